@@ -1,0 +1,122 @@
+#include <omp.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <iostream>
+
+#include "cli/commands.h"
+#include "scene/scene_json.h"
+
+namespace scour {
+
+using nlohmann::json;
+
+namespace {
+
+struct BenchOptions {
+  std::string scene = "block";
+  long particles = 0;
+  long steps = 20;
+  long warmup = 3;
+  int threads = 0;
+  double scale = 1.0;
+  bool json = false;
+  std::vector<std::string> sets;
+};
+
+double median(std::vector<double> v) {
+  if (v.empty()) return 0.0;
+  std::sort(v.begin(), v.end());
+  size_t m = v.size() / 2;
+  return v.size() % 2 ? v[m] : 0.5 * (v[m - 1] + v[m]);
+}
+
+int bench(const BenchOptions& o) {
+  setThreads(o.threads);
+  Scene scene = loadScene(o.scene, o.scale, o.particles, o.sets);
+  std::unique_ptr<World> world;
+  try {
+    world = std::make_unique<World>(scene.desc);
+  } catch (const std::invalid_argument& e) {
+    throw InputError(std::string("scene '") + o.scene + "': " + e.what());
+  }
+  const int threads = omp_get_max_threads();
+  constexpr size_t kPasses = size_t(Pass::kCount);
+  std::vector<std::vector<double>> perPass(kPasses);
+  std::vector<double> total, groups[4];
+  size_t particles = 0;
+  try {
+    for (long s = 0; s < o.warmup; ++s) world->step();
+    for (long s = 0; s < o.steps; ++s) {
+      auto before = world->passSeconds();
+      auto t0 = std::chrono::steady_clock::now();
+      world->step();
+      total.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+      double g[4] = {0, 0, 0, 0};
+      for (size_t p = 0; p < kPasses; ++p) {
+        double d = world->passSeconds()[p] - before[p];
+        perPass[p].push_back(d);
+        g[int(table1Group(Pass(p)))] += d;
+      }
+      for (int k = 0; k < 4; ++k) groups[k].push_back(g[k]);
+      particles += world->fluid().size();
+    }
+  } catch (const InvariantViolation& e) {
+    std::cerr << "error: invariant violated at " << e.what() << "\n";
+    return kExitInvariant;
+  }
+  const double meanParticles = double(particles) / double(o.steps);
+  const double tTotal = median(total);
+  const double tSph = median(groups[int(Table1Group::kSph)]);
+  json j;
+  j["scene"] = o.scene;
+  j["particles"] = long(meanParticles + 0.5);
+  j["threads"] = threads;
+  j["steps"] = o.steps;
+  json sps = {{"total", tTotal}};
+  for (size_t p = 0; p < kPasses; ++p)
+    if (world->passCalls()[p] > 0) sps[passName(Pass(p))] = median(perPass[p]);
+  j["seconds_per_step"] = sps;
+  j["table1"] = {{"sph", tSph},
+                 {"erosion", median(groups[int(Table1Group::kErosion)])},
+                 {"boundary", median(groups[int(Table1Group::kBoundary)])}};
+  j["particle_steps_per_second_per_core"] = meanParticles / tTotal / threads;
+  j["sph_particle_steps_per_second_per_core"] = meanParticles / tSph / threads;
+  j["memory_bytes_per_particle"] = double(world->memoryBytes()) / meanParticles;
+  j["neighbors_per_particle"] =
+      double(world->neighbors().totalPairs()) / double(std::max<size_t>(1, world->fluid().size()));
+  if (o.json) {
+    std::cout << j.dump(2) << "\n";
+    return kExitOk;
+  }
+  std::printf("scene %s: %ld particles, %d threads, %ld steps (median seconds per step)\n",
+              o.scene.c_str(), long(meanParticles + 0.5), threads, o.steps);
+  for (auto& [k, v] : j["seconds_per_step"].items()) std::printf("  %-22s %10.6f\n", k.c_str(), double(v));
+  std::printf("Table 1 groups: SPH %.6f  erosion %.6f  boundary %.6f\n", double(j["table1"]["sph"]),
+              double(j["table1"]["erosion"]), double(j["table1"]["boundary"]));
+  std::printf("particle-steps/s/core: %.0f (SPH part alone: %.0f)\n",
+              double(j["particle_steps_per_second_per_core"]),
+              double(j["sph_particle_steps_per_second_per_core"]));
+  std::printf("memory: %.0f bytes/particle; %.1f neighbors/particle\n",
+              double(j["memory_bytes_per_particle"]), double(j["neighbors_per_particle"]));
+  return kExitOk;
+}
+
+}  // namespace
+
+Command addBenchCommand(CLI::App& app) {
+  auto o = std::make_shared<BenchOptions>();
+  CLI::App* c = app.add_subcommand("bench", "Time the step: median seconds per pass");
+  c->add_option("scene", o->scene, "Built-in scene name (default: block)");
+  c->add_option("--particles", o->particles, "Approximate particle count (block scene)")
+      ->check(kPositive);
+  c->add_option("--steps", o->steps, "Timed steps")->check(kPositive);
+  c->add_option("--warmup", o->warmup, "Untimed steps first")->check(CLI::NonNegativeNumber);
+  c->add_option("--threads", o->threads, "OpenMP threads (default: all cores)")->check(kPositive);
+  c->add_option("--scale", o->scale, "Scale the preset's particle count")->check(kPositive);
+  c->add_option("--set", o->sets, "Override a parameter: key=value (repeatable)");
+  c->add_flag("--json", o->json, "One JSON object on stdout");
+  return [o] { return bench(*o); };
+}
+
+}  // namespace scour

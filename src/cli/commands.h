@@ -1,0 +1,32 @@
+#pragma once
+// The subcommands. Each registers its options on the CLI11 app and returns the exit code:
+// 0 success, 1 failure while running (I/O), 2 bad input (flags, scene), 3 invariant violated.
+
+#include <CLI/CLI.hpp>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "scene/presets.h"
+
+namespace scour {
+
+constexpr int kExitOk = 0, kExitFailure = 1, kExitInput = 2, kExitInvariant = 3;
+
+/// An input error found after parsing; main prints "error: <what>" and exits with 2.
+struct InputError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+using Command = std::function<int()>;
+Command addRunCommand(CLI::App& app);
+Command addBenchCommand(CLI::App& app);
+
+/// Shared by run and bench: builds the scene and applies `--set key=value` overrides.
+Scene loadScene(const std::string& name, double scale, long particles,
+                const std::vector<std::string>& sets);
+/// A CLI11 validator: a finite number > 0.
+extern const CLI::Validator kPositive;
+void setThreads(int threads);
+
+}  // namespace scour

@@ -1,0 +1,70 @@
+#include "engine/boundary.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace scour {
+
+BoundarySampler::BoundarySampler(const Heightfield& hf, double spacing)
+    : spacing_(spacing),
+      tilesX_((hf.nx() - 2) / kTileCells + 1),
+      tilesZ_((hf.nz() - 2) / kTileCells + 1),
+      mark_(size_t(tilesX_) * tilesZ_, 0) {}
+
+bool BoundarySampler::updateActiveTiles(const Heightfield& hf, const std::vector<Vec3f>& fluid,
+                                        double reach) {
+  std::fill(mark_.begin(), mark_.end(), 0);
+  const double tw = kTileCells * hf.dx(), td = kTileCells * hf.dz();
+  auto tileX = [&](double x) { return std::clamp(int(std::floor((x - hf.x0()) / tw)), 0, tilesX_ - 1); };
+  auto tileZ = [&](double z) { return std::clamp(int(std::floor((z - hf.z0()) / td)), 0, tilesZ_ - 1); };
+  for (const Vec3f& p : fluid) {
+    if (p.y() - hf.heightAt(p.x(), p.z()) > reach) continue;
+    int ia = tileX(p.x() - reach), ib = tileX(p.x() + reach);
+    int ka = tileZ(p.z() - reach), kb = tileZ(p.z() + reach);
+    for (int k = ka; k <= kb; ++k)
+      for (int i = ia; i <= ib; ++i) mark_[size_t(k) * tilesX_ + i] = 1;
+  }
+  std::vector<int> now;
+  for (int t = 0; t < int(mark_.size()); ++t)
+    if (mark_[t]) now.push_back(t);
+  bool changed = now != active_;
+  active_.swap(now);
+  return changed;
+}
+
+void BoundarySampler::generate(const Heightfield& hf, BoundaryParticles& out) const {
+  out.x.clear();
+  out.triangle.clear();
+  out.area.clear();
+  const int cellsX = hf.nx() - 1, cellsZ = hf.nz() - 1;
+  for (int t : active_) {
+    int ti = t % tilesX_, tk = t / tilesX_;
+    for (int k = tk * kTileCells; k < std::min(cellsZ, (tk + 1) * kTileCells); ++k)
+      for (int i = ti * kTileCells; i < std::min(cellsX, (ti + 1) * kTileCells); ++i)
+        for (int s = 0; s < 2; ++s) sampleTriangle(hf, 2 * (k * cellsX + i) + s, spacing_, out);
+  }
+}
+
+void BoundarySampler::sampleTriangle(const Heightfield& hf, int tri, double spacing,
+                                     BoundaryParticles& out) {
+  auto c = hf.triangleCorners(tri);
+  const Eigen::Vector3d ab = c[1] - c[0], ac = c[2] - c[0];
+  double longest = std::max({ab.norm(), ac.norm(), (c[2] - c[1]).norm()});
+  int n = std::max(1, int(std::ceil(longest / spacing - 1e-9)));
+  // Projected (x–z) area: the heightfield's cell area is what the terrain volume is made of.
+  double projected = 0.5 * std::abs(ab.x() * ac.z() - ab.z() * ac.x());
+  double each = projected / (double(n) * n);
+  auto put = [&](double u, double w) {
+    Eigen::Vector3d p = c[0] + (u / n) * ab + (w / n) * ac;
+    out.x.push_back(p.cast<float>());
+    out.triangle.push_back(tri);
+    out.area.push_back(each);
+  };
+  // Row j of the scanline walk: the upward sub-triangles, then the downward ones between them.
+  for (int j = 0; j < n; ++j) {
+    for (int i = 0; i + j < n; ++i) put(i + 1.0 / 3.0, j + 1.0 / 3.0);
+    for (int i = 0; i + j < n - 1; ++i) put(i + 2.0 / 3.0, j + 2.0 / 3.0);
+  }
+}
+
+}  // namespace scour

@@ -1,0 +1,59 @@
+#pragma once
+// The terrain: a regular grid of heights over the x–z plane (y is up), two triangles per cell.
+// Cell (i, k) spans vertices i..i+1 along x and k..k+1 along z; it is split along the diagonal
+// from vertex (i, k) to (i+1, k+1). Triangle t of cell (i, k) has id 2·(k·(nx−1) + i) + t, with
+// t = 0 the triangle (i,k), (i+1,k), (i+1,k+1) and t = 1 the triangle (i,k), (i+1,k+1), (i,k+1).
+// Heights are double: the soil budget is kept to rounding.
+
+#include <Eigen/Core>
+#include <array>
+#include <vector>
+
+namespace scour {
+
+struct SurfacePoint {
+  double height;
+  Eigen::Vector3d normal;  ///< unit, pointing up out of the terrain
+  int triangle;
+};
+
+class Heightfield {
+ public:
+  Heightfield() = default;
+  /// nx × nz vertices, spacing dx along x and dz along z, vertex (0,0) at (x0, z0).
+  Heightfield(int nx, int nz, double dx, double dz, double x0 = 0.0, double z0 = 0.0);
+
+  int nx() const { return nx_; }
+  int nz() const { return nz_; }
+  double dx() const { return dx_; }
+  double dz() const { return dz_; }
+  double x0() const { return x0_; }
+  double z0() const { return z0_; }
+  double xMax() const { return x0_ + dx_ * (nx_ - 1); }
+  double zMax() const { return z0_ + dz_ * (nz_ - 1); }
+  int triangleCount() const { return 2 * (nx_ - 1) * (nz_ - 1); }
+
+  double& at(int i, int k) { return h_[size_t(k) * nx_ + i]; }
+  double at(int i, int k) const { return h_[size_t(k) * nx_ + i]; }
+  const std::vector<double>& heights() const { return h_; }
+  std::vector<double>& heights() { return h_; }
+  double minHeight() const;
+  double maxHeight() const;
+
+  /// Height, unit normal and triangle of the surface above (x, z); points outside the grid are
+  /// clamped to its edge.
+  SurfacePoint surface(double x, double z) const;
+  double heightAt(double x, double z) const { return surface(x, z).height; }
+
+  /// The three corners (x, h, z) of a triangle.
+  std::array<Eigen::Vector3d, 3> triangleCorners(int tri) const;
+  /// Vertex indices (i, k) of a triangle's corners, in the order of triangleCorners.
+  std::array<std::array<int, 2>, 3> triangleVertices(int tri) const;
+
+ private:
+  int nx_ = 0, nz_ = 0;
+  double dx_ = 1, dz_ = 1, x0_ = 0, z0_ = 0;
+  std::vector<double> h_;
+};
+
+}  // namespace scour

@@ -1,0 +1,106 @@
+#pragma once
+// Uniform-grid neighbor search. Cells are cubes of edge h over the fluid's bounding box; a counting
+// sort puts particle indices in cell order, and each fluid particle's neighbors within h (fluid and
+// boundary particles alike) are gathered once per step into lists that every pass shares.
+//
+// Determinism: a particle's list is built by one thread, scanning the 27 cells in a fixed order and
+// each cell in ascending particle order, so the lists are the same at any thread count. The lists
+// are stored in one chunk per thread (no copy); a particle's list is a pointer and a count.
+//
+// Z-order: zOrder() returns the permutation that sorts particles along the Morton curve of their
+// cell coordinates; World applies it every few steps so that neighbors are near in memory.
+
+#include <Eigen/Core>
+#include <cstdint>
+#include <vector>
+
+namespace scour {
+
+using Vec3f = Eigen::Vector3f;
+
+class Grid {
+ public:
+  /// Bins points into cells of edge `cell` over their bounding box (expanded by one cell).
+  void build(const std::vector<Vec3f>& x, float cell);
+  /// Bins a second point set (boundary particles) into the same cells; points outside are dropped.
+  void binOther(const std::vector<Vec3f>& y, std::vector<uint32_t>& start,
+                std::vector<uint32_t>& sorted) const;
+
+  float cell() const { return cell_; }
+  const Eigen::Vector3i& dims() const { return dims_; }
+  const Vec3f& origin() const { return origin_; }
+  Eigen::Vector3i cellOf(const Vec3f& p) const;
+  int linear(int cx, int cy, int cz) const { return cx + dims_.x() * (cy + dims_.y() * cz); }
+  bool inside(int cx, int cy, int cz) const {
+    return cx >= 0 && cy >= 0 && cz >= 0 && cx < dims_.x() && cy < dims_.y() && cz < dims_.z();
+  }
+
+  const std::vector<uint32_t>& start() const { return start_; }
+  const std::vector<uint32_t>& sorted() const { return sorted_; }
+
+  /// Calls f(j) for every indexed point j in the 27 cells around p (no distance test).
+  template <class F>
+  void forEachCandidate(const Vec3f& p, const std::vector<uint32_t>& start,
+                        const std::vector<uint32_t>& sorted, F&& f) const {
+    Eigen::Vector3i c = cellOf(p);
+    for (int dz = -1; dz <= 1; ++dz)
+      for (int dy = -1; dy <= 1; ++dy)
+        for (int dx = -1; dx <= 1; ++dx) {
+          int cx = c.x() + dx, cy = c.y() + dy, cz = c.z() + dz;
+          if (!inside(cx, cy, cz)) continue;
+          int l = linear(cx, cy, cz);
+          for (uint32_t k = start[l]; k < start[l + 1]; ++k) f(sorted[k]);
+        }
+  }
+
+  /// Morton-order permutation of the points last passed to build().
+  std::vector<uint32_t> zOrder(const std::vector<Vec3f>& x) const;
+
+  size_t bytes() const { return (start_.capacity() + sorted_.capacity()) * sizeof(uint32_t); }
+
+ private:
+  float cell_ = 1.0f;
+  Vec3f origin_ = Vec3f::Zero();
+  Eigen::Vector3i dims_ = Eigen::Vector3i::Ones();
+  std::vector<uint32_t> start_, sorted_;
+};
+
+/// Per-particle neighbor lists, stored in per-thread chunks.
+class NeighborLists {
+ public:
+  /// Neighbors j ≠ i of each x[i] among `x` (self = true) or among the points binned in
+  /// (start, sorted) with positions y, within radius r.
+  void build(const Grid& grid, const std::vector<Vec3f>& x, const std::vector<Vec3f>& y,
+             const std::vector<uint32_t>& start, const std::vector<uint32_t>& sorted, float r,
+             bool self);
+
+  size_t size() const { return count_.size(); }
+  uint32_t count(size_t i) const { return count_[i]; }
+  const uint32_t* begin(size_t i) const { return first_[i]; }
+  size_t totalPairs() const;
+  size_t bytes() const;
+
+ private:
+  std::vector<std::vector<uint32_t>> chunks_;
+  std::vector<const uint32_t*> first_;
+  std::vector<uint32_t> count_;
+};
+
+/// Calls f(j, xij, r) for each neighbor j of particle i, with xij = x[i] − y[j] and r = |xij|.
+template <class F>
+inline void forEachNeighbor(const NeighborLists& n, const std::vector<Vec3f>& x,
+                            const std::vector<Vec3f>& y, size_t i, F&& f) {
+  const uint32_t* js = n.begin(i);
+  const uint32_t c = n.count(i);
+  const Vec3f xi = x[i];
+  for (uint32_t k = 0; k < c; ++k) {
+    const uint32_t j = js[k];
+    const Vec3f xij = xi - y[j];
+    f(j, xij, xij.norm());
+  }
+}
+
+/// A fixed partition of [0, n) into `parts` ranges, independent of the thread count.
+inline size_t blockBegin(size_t n, size_t parts, size_t b) { return n * b / parts; }
+
+}  // namespace scour

@@ -1,0 +1,180 @@
+#include "engine/params.h"
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <cstdlib>
+#include <string>
+
+namespace scour {
+namespace {
+
+const char* const kEosChoices[] = {"tait", "ideal_gas", nullptr};
+
+ParamInfo real(const char* key, const char* label, const char* symbol, const char* unit,
+               double lo, double hi, const char* help, double SimParams::*m) {
+  ParamInfo i{key, label, symbol, unit, lo, hi, help};
+  i.dmember = m;
+  return i;
+}
+ParamInfo integer(const char* key, const char* label, const char* symbol, const char* unit,
+                  double lo, double hi, const char* help, int SimParams::*m,
+                  const char* const* choices = nullptr) {
+  ParamInfo i{key, label, symbol, unit, lo, hi, help};
+  i.imember = m;
+  i.choices = choices;
+  return i;
+}
+
+std::vector<ParamInfo> makeTable() {
+  using P = SimParams;
+  return {
+      real("fluid.spacing", "Particle spacing", "Δs", "m", 1e-4, 100.0,
+           "Distance between neighbouring fluid particles at rest.", &P::spacing),
+      real("fluid.support_over_spacing", "Support / spacing", "h/Δs", "-", 1.5, 3.0,
+           "Kernel support radius in particle spacings (paper: h ≈ 2Δs).",
+           &P::support_over_spacing),
+      real("fluid.rest_density", "Rest density", "ρ0", "kg/m³", 1.0, 1e5,
+           "Density of water at rest.", &P::rest_density),
+      real("fluid.sound_speed", "Speed of sound", "c_s", "m/s", 0.1, 1e4,
+           "Numerical speed of sound of the weakly compressible fluid; ≥ 10·|v|max.",
+           &P::sound_speed),
+      integer("fluid.eos", "Equation of state", "", "-", 0, 1,
+              "tait: p = B((ρ/ρ0)^7 − 1); ideal_gas: Müller's p = c_s²(ρ − ρ0).", &P::eos,
+              kEosChoices),
+      real("fluid.viscosity", "Viscosity", "ν", "m²/s", 0.0, 10.0,
+           "Artificial kinematic viscosity (viscosity-kernel Laplacian).", &P::viscosity),
+      real("fluid.surface_tension", "Surface tension", "κ", "1/s²", 0.0, 1e6,
+           "Becker–Teschner cohesion strength.", &P::surface_tension),
+      real("fluid.gravity", "Gravity", "g", "m/s²", 0.0, 100.0,
+           "Gravitational acceleration, pointing along −y.", &P::gravity),
+      real("time.max_dt", "Maximum time step", "Δt", "s", 1e-7, 0.01,
+           "Upper bound on the adaptive time step (paper: 2 ms).", &P::max_dt),
+      real("time.cfl", "CFL factor", "λ", "-", 0.01, 1.0,
+           "Δt ≤ λ·h / max(c_s, |v|max).", &P::cfl),
+      real("time.force_cfl", "Force factor", "λ_f", "-", 0.01, 1.0,
+           "Δt ≤ λ_f·√(h / |a|max).", &P::force_cfl),
+      real("time.fixed_dt", "Fixed time step", "Δt", "s", 0.0, 0.01,
+           "If > 0, use this fixed step instead of the adaptive one.", &P::fixed_dt),
+      real("boundary.penalty_stiffness", "Penalty stiffness", "K_S", "1/s²", 0.0, 1e12,
+           "Eq. (6) spring constant per unit mass; 0 derives it from the water depth.",
+           &P::penalty_stiffness),
+      real("boundary.penalty_damping", "Penalty damping", "K_D", "1/s", 0.0, 1e8,
+           "Eq. (6) damping per unit mass; 0 = critical damping.", &P::penalty_damping),
+      real("boundary.contact_over_spacing", "Contact distance / spacing", "", "-", 0.0, 2.0,
+           "Distance from terrain and walls within which eq. (6) acts, in Δs.",
+           &P::contact_over_spacing),
+      real("boundary.friction", "No-slip friction", "μ_b", "m³/s", 0.0, 1e3,
+           "Eq. (8) friction constant over boundary particles.", &P::boundary_friction),
+      integer("engine.reorder_every", "Reorder interval", "", "steps", 1, 1e6,
+              "Steps between Z-order reorders of the particle arrays.", &P::reorder_every),
+      real("engine.max_penetration_over_ds", "Penetration limit", "", "Δs", 0.0, 100.0,
+           "A particle deeper than this below the terrain stops the run.",
+           &P::max_penetration_over_ds),
+  };
+}
+
+size_t editDistance(std::string_view a, std::string_view b) {
+  std::vector<size_t> row(b.size() + 1);
+  for (size_t j = 0; j <= b.size(); ++j) row[j] = j;
+  for (size_t i = 1; i <= a.size(); ++i) {
+    size_t diag = row[0];
+    row[0] = i;
+    for (size_t j = 1; j <= b.size(); ++j) {
+      size_t up = row[j];
+      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diag + (a[i - 1] == b[j - 1] ? 0 : 1)});
+      diag = up;
+    }
+  }
+  return row[b.size()];
+}
+
+std::string formatRange(const ParamInfo& i) {
+  char buf[128];
+  std::snprintf(buf, sizeof buf, "[%g, %g]", i.min, i.max);
+  return buf;
+}
+
+}  // namespace
+
+const std::vector<ParamInfo>& paramTable() {
+  static const std::vector<ParamInfo> table = makeTable();
+  return table;
+}
+
+const ParamInfo* findParam(std::string_view key) {
+  for (const auto& i : paramTable())
+    if (key == i.key) return &i;
+  return nullptr;
+}
+
+std::string nearestParamKey(std::string_view key) {
+  std::string best;
+  size_t bestD = SIZE_MAX;
+  for (const auto& i : paramTable()) {
+    // Compare against the full key and against its last component, so "k_eps" finds "erosion.k_eps".
+    std::string_view full = i.key;
+    std::string_view tail = full.substr(full.find('.') + 1);
+    size_t d = std::min(editDistance(key, full), editDistance(key, tail));
+    if (d < bestD) bestD = d, best = i.key;
+  }
+  return best;
+}
+
+double getParam(const SimParams& p, const ParamInfo& info) {
+  return info.dmember ? p.*info.dmember : double(p.*info.imember);
+}
+
+std::string setParam(SimParams& p, std::string_view key, std::string_view value) {
+  const ParamInfo* info = findParam(key);
+  if (!info) {
+    return "unknown parameter '" + std::string(key) + "' (did you mean '" + nearestParamKey(key) +
+           "'?)";
+  }
+  std::string text(value);
+  double v = 0.0;
+  bool parsed = false;
+  if (info->choices) {
+    for (int k = 0; info->choices[k]; ++k)
+      if (text == info->choices[k]) v = k, parsed = true;
+    if (!parsed) {
+      std::string names;
+      for (int k = 0; info->choices[k]; ++k) names += (k ? ", " : "") + std::string(info->choices[k]);
+      return "parameter '" + std::string(key) + "': expected one of " + names + ", found '" + text +
+             "'";
+    }
+  } else {
+    char* end = nullptr;
+    v = std::strtod(text.c_str(), &end);
+    parsed = !text.empty() && end == text.c_str() + text.size();
+    if (!parsed) return "parameter '" + std::string(key) + "': expected a number, found '" + text + "'";
+  }
+  if (!std::isfinite(v)) return "parameter '" + std::string(key) + "': value must be finite";
+  if (v < info->min || v > info->max) {
+    return "parameter '" + std::string(key) + "': " + text + " is outside the valid range " +
+           formatRange(*info);
+  }
+  if (info->dmember) {
+    p.*info->dmember = v;
+  } else {
+    if (v != std::floor(v)) return "parameter '" + std::string(key) + "': expected an integer";
+    p.*info->imember = int(v);
+  }
+  return {};
+}
+
+std::string validateParams(const SimParams& p) {
+  for (const auto& i : paramTable()) {
+    double v = getParam(p, i);
+    if (!std::isfinite(v)) return "parameter '" + std::string(i.key) + "' is not finite";
+    if (v < i.min || v > i.max) {
+      char buf[64];
+      std::snprintf(buf, sizeof buf, "%g", v);
+      return "parameter '" + std::string(i.key) + "': " + buf + " is outside the valid range " +
+             formatRange(i);
+    }
+  }
+  return {};
+}
+
+}  // namespace scour

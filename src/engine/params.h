@@ -1,0 +1,93 @@
+#pragma once
+// SimParams: every number the engine reads, as an aggregate with defaults. Units are SI.
+// The one parameter table (kParams) names each field once, with label, unit, range, group and the
+// paper's symbol; the scene reader, the CLI --set overrides and (later) the GUI are all built from
+// it, so no code lists the fields one by one.
+
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace scour {
+
+enum class EquationOfState { kTait, kIdealGas };
+
+struct SimParams {
+  // --- fluid (paper §3) ---
+  /// Δs, particle spacing [m].
+  double spacing = 0.02;
+  /// h / Δs, kernel support radius over spacing (paper: h ≈ 2Δs) [-].
+  double support_over_spacing = 2.0;
+  /// ρ0, rest density of water [kg/m³].
+  double rest_density = 1000.0;
+  /// c_s, numerical speed of sound; should be ≥ 10 |v|max [m/s].
+  double sound_speed = 20.0;
+  /// Equation of state: 0 = Tait (default), 1 = Müller's ideal gas p = k(ρ − ρ0), k = c_s².
+  int eos = 0;
+  /// ν, artificial kinematic viscosity for the viscosity-kernel Laplacian term [m²/s].
+  double viscosity = 1e-3;
+  /// κ, Becker–Teschner cohesion strength [1/s²].
+  double surface_tension = 0.0;
+  /// g, gravitational acceleration along −y [m/s²].
+  double gravity = 9.81;
+
+  // --- time step (model.md §1) ---
+  /// Upper bound on Δt (paper: 2 ms) [s].
+  double max_dt = 0.002;
+  /// λ, CFL factor in Δt = λ h / max(c_s, |v|max) [-].
+  double cfl = 0.4;
+  /// Factor in the force criterion Δt = λ_f √(h / |a|max) [-].
+  double force_cfl = 0.25;
+  /// If > 0, Δt is fixed to this value (the paper's fixed-step policy) [s].
+  double fixed_dt = 0.0;
+
+  // --- boundary (paper §3.1, eqs. 6–8) ---
+  /// K_S, penalty stiffness per unit mass [1/s²]; 0 = derived from the scene's water depth.
+  double penalty_stiffness = 0.0;
+  /// K_D, penalty damping per unit mass [1/s]; 0 = critical damping for K_S.
+  double penalty_damping = 0.0;
+  /// Contact distance from the terrain and walls within which eq. (6) acts, over Δs [-].
+  double contact_over_spacing = 0.5;
+  /// μ_b, no-slip friction constant of eq. (8) [m³/s].
+  double boundary_friction = 0.0;
+
+  // --- bookkeeping ---
+  /// Steps between reorders of the particle arrays along the Z-order curve [-].
+  int reorder_every = 16;
+  /// A particle deeper than this below the terrain stops the run [Δs].
+  double max_penetration_over_ds = 0.5;
+
+  double support() const { return support_over_spacing * spacing; }
+  double particleMass() const { return rest_density * spacing * spacing * spacing; }
+  EquationOfState equationOfState() const {
+    return eos == 1 ? EquationOfState::kIdealGas : EquationOfState::kTait;
+  }
+};
+
+/// One row of the parameter table.
+struct ParamInfo {
+  const char* key;    ///< scene/CLI key, "group.name"
+  const char* label;  ///< human label for the GUI
+  const char* symbol; ///< the paper's symbol, or ""
+  const char* unit;
+  double min, max;    ///< valid closed range
+  const char* help;
+  double SimParams::*dmember = nullptr;
+  int SimParams::*imember = nullptr;
+  /// For enumerations stored in an int: the names of the values 0, 1, …; nullptr-terminated.
+  const char* const* choices = nullptr;
+};
+
+const std::vector<ParamInfo>& paramTable();
+
+/// Looks up a key; nullptr if unknown.
+const ParamInfo* findParam(std::string_view key);
+/// The valid key closest to `key` by edit distance (for "did you mean" messages).
+std::string nearestParamKey(std::string_view key);
+/// Sets a parameter from text. Returns an empty string on success, else a message naming the key.
+std::string setParam(SimParams& p, std::string_view key, std::string_view value);
+double getParam(const SimParams& p, const ParamInfo& info);
+/// Checks every field against its range; returns the first problem or "".
+std::string validateParams(const SimParams& p);
+
+}  // namespace scour

@@ -1,0 +1,327 @@
+#include "engine/world.h"
+
+#include <omp.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <sstream>
+
+namespace scour {
+
+const char* passName(Pass p) {
+  switch (p) {
+    case Pass::kNeighborSearch: return "neighbor_search";
+    case Pass::kDensity: return "density";
+    case Pass::kForces: return "forces";
+    case Pass::kBoundaryForces: return "boundary_forces";
+    case Pass::kIntegrate: return "integrate";
+    case Pass::kSources: return "sources";
+    case Pass::kSinks: return "sinks";
+    case Pass::kBoundaryParticles: return "boundary_particles";
+    case Pass::kBoundaryNeighbors: return "boundary_neighbors";
+    case Pass::kNoSlip: return "no_slip";
+    case Pass::kInvariants: return "invariants";
+    case Pass::kCount: break;
+  }
+  return "?";
+}
+
+Table1Group table1Group(Pass p) {
+  switch (p) {
+    case Pass::kNeighborSearch:
+    case Pass::kDensity:
+    case Pass::kForces:
+    case Pass::kBoundaryForces:
+    case Pass::kIntegrate:
+    case Pass::kNoSlip: return Table1Group::kSph;
+    case Pass::kBoundaryParticles:
+    case Pass::kBoundaryNeighbors: return Table1Group::kBoundary;
+    default: return Table1Group::kOther;
+  }
+}
+
+namespace {
+
+SimParams resolve(SimParams p) {
+  double contact = p.contact_over_spacing > 0 ? p.contact_over_spacing * p.spacing : p.spacing;
+  // K_S: a particle arriving at a tenth of the sound speed is stopped within the contact distance.
+  if (p.penalty_stiffness <= 0) p.penalty_stiffness = std::pow(0.1 * p.sound_speed / contact, 2);
+  if (p.penalty_damping <= 0) p.penalty_damping = 2.0 * std::sqrt(p.penalty_stiffness);
+  return p;
+}
+
+void require(bool ok, const std::string& what) {
+  if (!ok) throw std::invalid_argument(what);
+}
+
+}  // namespace
+
+World::World(WorldDesc d)
+    : p_(resolve(d.params)),
+      k_(p_),
+      hf_(std::move(d.terrain)),
+      dom_(d.domain),
+      fx_(d.effects),
+      sinks_(std::move(d.sinks)),
+      sampler_(hf_, p_.spacing) {
+  std::string bad = validateParams(d.params);
+  require(bad.empty(), bad);
+  require(hf_.nx() >= 2 && hf_.nz() >= 2, "terrain: needs at least 2 × 2 vertices");
+  require(hf_.dx() > 0 && hf_.dz() > 0, "terrain: cell size must be positive");
+  for (size_t s = 0; s < d.sources.size(); ++s) {
+    const Source& src = d.sources[s];
+    std::string at = "sources[" + std::to_string(s) + "]";
+    require(src.radius > 0 && std::isfinite(src.radius), at + ".radius must be positive");
+    require(src.rate > 0 && std::isfinite(src.rate), at + ".rate must be positive");
+    require(src.direction.norm() > 0 && src.direction.allFinite(),
+            at + ".direction must be a non-zero vector");
+    require(src.center.allFinite(), at + ".position must be finite");
+    emitters_.emplace_back(src, p_.spacing);
+  }
+  for (const auto& x : d.particles) {
+    require(x.allFinite(), "particles: positions must be finite");
+    f_.push(x, Vec3f::Zero(), nextId_++);
+  }
+  searchNeighbors();
+  computeAccelerations();
+}
+
+template <class F>
+void World::timed(Pass pass, F&& f) {
+  auto t0 = std::chrono::steady_clock::now();
+  f();
+  passSeconds_[size_t(pass)] +=
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  ++passCalls_[size_t(pass)];
+}
+
+double World::chooseDt() const {
+  if (p_.fixed_dt > 0) return p_.fixed_dt;
+  float v2 = 0, a2 = 0;
+  const size_t n = f_.size();
+#pragma omp parallel for schedule(static) reduction(max : v2, a2)
+  for (size_t i = 0; i < n; ++i) {
+    v2 = std::max(v2, f_.v[i].squaredNorm());
+    a2 = std::max(a2, f_.a[i].squaredNorm());
+  }
+  const double h = k_.h;
+  double dt = std::min(p_.max_dt, p_.cfl * h / std::max(p_.sound_speed, std::sqrt(double(v2))));
+  if (a2 > 0) dt = std::min(dt, p_.force_cfl * std::sqrt(h / std::sqrt(double(a2))));
+  if (p_.viscosity > 0) dt = std::min(dt, 0.125 * h * h / p_.viscosity);
+  dt = std::min(dt, 0.5 / std::sqrt(p_.penalty_stiffness));
+  return dt;
+}
+
+void World::searchNeighbors() {
+  timed(Pass::kNeighborSearch, [&] {
+    grid_.build(f_.x, float(k_.h));
+    nbrs_.build(grid_, f_.x, f_.x, grid_.start(), grid_.sorted(), float(k_.h), true);
+  });
+  if (!fx_.no_slip) return;
+  timed(Pass::kBoundaryParticles, [&] {
+    if (sampler_.updateActiveTiles(hf_, f_.x, k_.h)) sampler_.generate(hf_, b_);
+  });
+  timed(Pass::kBoundaryNeighbors, [&] {
+    grid_.binOther(b_.x, bstart_, bsorted_);
+    bnbrs_.build(grid_, f_.x, b_.x, bstart_, bsorted_, float(k_.h), false);
+  });
+}
+
+void World::computeAccelerations() {
+  if (vhat_.size() != f_.size()) vhat_ = f_.v;
+  timed(Pass::kDensity, [&] { computeDensity(k_, nbrs_, hf_, dom_, f_); });
+  timed(Pass::kForces, [&] { computeForces(k_, nbrs_, vhat_, f_); });
+  timed(Pass::kBoundaryForces, [&] { applyBoundaryForces(k_, hf_, dom_, vhat_, f_); });
+  if (fx_.no_slip) timed(Pass::kNoSlip, [&] { applyNoSlip(k_, bnbrs_, b_, vhat_, f_); });
+}
+
+void World::removeParticles() {
+  const bool open = !dom_.walls;
+  if (sinks_.empty() && !open) return;
+  timed(Pass::kSinks, [&] {
+    std::vector<uint32_t> keep;
+    keep.reserve(f_.size());
+    for (size_t i = 0; i < f_.size(); ++i) {
+      const Vec3f& x = f_.x[i];
+      bool sunk = false;
+      for (const Sink& s : sinks_) sunk = sunk || s.contains(x);
+      bool out = open && (x.x() < hf_.x0() || x.x() > hf_.xMax() || x.z() < hf_.z0() ||
+                          x.z() > hf_.zMax());
+      if (sunk) ++removedSinks_;
+      else if (out) ++removedOutflow_;
+      else keep.push_back(uint32_t(i));
+    }
+    if (keep.size() != f_.size()) f_.gather(keep);
+  });
+}
+
+void World::emit() {
+  if (emitters_.empty()) return;
+  timed(Pass::kSources, [&] {
+    const float r2 = float(0.25 * p_.spacing * p_.spacing);
+    for (Emitter& e : emitters_) {
+      if (time_ < e.src.start || time_ >= e.src.stop) continue;
+      e.travelled += e.speed * dt_;
+      while (e.travelled >= p_.spacing) {
+        e.travelled -= p_.spacing;
+        const Eigen::Vector3d base = e.src.center + e.src.direction * e.travelled;
+        const Vec3f vel = (e.src.direction * e.speed).cast<float>();
+        const size_t existing = f_.size();
+        for (const auto& off : e.slots) {
+          Vec3f pos = (base + off).cast<float>();
+          bool occupied = false;
+          // The grid indexes the particles that existed at the last search; they have moved by
+          // far less than a cell since, so its 27 cells still hold every particle within Δs/2.
+          grid_.forEachCandidate(pos, grid_.start(), grid_.sorted(), [&](uint32_t j) {
+            occupied = occupied || (j < existing && (f_.x[j] - pos).squaredNorm() < r2);
+          });
+          if (occupied) {
+            ++e.blocked;
+            continue;
+          }
+          f_.push(pos, vel, nextId_++);
+          vhat_.push_back(vel);
+          ++e.emitted;
+          ++emittedTotal_;
+        }
+      }
+    }
+  });
+}
+
+long World::blockedSlots() const {
+  long s = 0;
+  for (const auto& e : emitters_) s += e.blocked;
+  return s;
+}
+
+StepStats World::step() {
+  dt_ = chooseDt();
+  const float half = float(0.5 * dt_), full = float(dt_);
+  const size_t n0 = f_.size();
+  timed(Pass::kIntegrate, [&] {
+#pragma omp parallel for schedule(static)
+    for (size_t i = 0; i < n0; ++i) {
+      f_.v[i] += half * f_.a[i];  // kick: v(t + Δt/2)
+      f_.x[i] += full * f_.v[i];  // drift: x(t + Δt)
+    }
+  });
+  emit();  // before removal: the grid's indices are those of the last search
+  removeParticles();
+  ++step_;
+  time_ += dt_;
+  if (p_.reorder_every > 0 && step_ % p_.reorder_every == 0) {
+    timed(Pass::kNeighborSearch, [&] {
+      grid_.build(f_.x, float(k_.h));
+      f_.gather(grid_.zOrder(f_.x));
+    });
+  }
+  searchNeighbors();
+  const size_t n = f_.size();
+  timed(Pass::kIntegrate, [&] {
+    // The force time's velocity, predicted from the half step: v̂ = v(t+Δt/2) + Δt/2 · a(t).
+    vhat_.resize(n);
+#pragma omp parallel for schedule(static)
+    for (size_t i = 0; i < n; ++i) vhat_[i] = f_.v[i] + half * f_.a[i];
+  });
+  computeAccelerations();
+  timed(Pass::kIntegrate, [&] {
+#pragma omp parallel for schedule(static)
+    for (size_t i = 0; i < n; ++i) f_.v[i] += half * f_.a[i];  // kick: v(t + Δt)
+  });
+  timed(Pass::kInvariants, [&] { checkInvariants(); });
+  StepStats s;
+  s.dt = dt_;
+  s.time = time_;
+  s.step = step_;
+  s.particles = n;
+  float v2 = 0;
+#pragma omp parallel for schedule(static) reduction(max : v2)
+  for (size_t i = 0; i < n; ++i) v2 = std::max(v2, f_.v[i].squaredNorm());
+  s.max_speed = std::sqrt(double(v2));
+  return s;
+}
+
+void World::checkInvariants() {
+  const size_t n = f_.size();
+  const double ds = p_.spacing, slack = 0.5 * ds;
+  // First offending particle (lowest index) of each kind, found in parallel, reported in order.
+  long badNan = -1, badOut = -1;
+  double deepest = -1e300;
+  long deepestAt = -1;
+  auto upd = [](long& slot, long i) {
+#pragma omp critical(scour_inv)
+    if (slot < 0 || i < slot) slot = i;
+  };
+#pragma omp parallel
+  {
+    double tdeep = -1e300;
+    long tat = -1;
+#pragma omp for schedule(static) nowait
+    for (size_t i = 0; i < n; ++i) {
+      const Vec3f& x = f_.x[i];
+      if (!x.allFinite() || !f_.v[i].allFinite() || !f_.a[i].allFinite()) {
+        upd(badNan, long(i));
+        continue;
+      }
+      double depth = (hf_.heightAt(x.x(), x.z()) - x.y()) / ds;
+      if (depth > tdeep || (depth == tdeep && long(i) < tat)) tdeep = depth, tat = long(i);
+      if (dom_.walls && (x.x() < hf_.x0() - slack || x.x() > hf_.xMax() + slack ||
+                         x.z() < hf_.z0() - slack || x.z() > hf_.zMax() + slack))
+        upd(badOut, long(i));
+    }
+#pragma omp critical(scour_inv_deep)
+    if (tdeep > deepest || (tdeep == deepest && tat < deepestAt)) deepest = tdeep, deepestAt = tat;
+  }
+  inv_.max_penetration_over_ds = std::max(inv_.max_penetration_over_ds, std::max(deepest, 0.0));
+  auto where = [&](long i) {
+    std::ostringstream o;
+    const Vec3f& x = f_.x[i];
+    o << "step " << step_ << " (t = " << time_ << " s): particle " << i << " (id " << f_.id[i]
+      << ") at (" << x.x() << ", " << x.y() << ", " << x.z() << ")";
+    return o.str();
+  };
+  if (badNan >= 0) {
+    ++inv_.nan;
+    const Vec3f& v = f_.v[badNan];
+    std::ostringstream o;
+    o << where(badNan) << " has a non-finite state: velocity (" << v.x() << ", " << v.y() << ", "
+      << v.z() << ")";
+    throw InvariantViolation(o.str());
+  }
+  if (badOut >= 0) {
+    ++inv_.escaped;
+    throw InvariantViolation(where(badOut) + " has left the domain through a closed wall");
+  }
+  if (deepest > p_.max_penetration_over_ds) {
+    std::ostringstream o;
+    o << where(deepestAt) << " is " << deepest << " Δs below the terrain (limit "
+      << p_.max_penetration_over_ds << " Δs)";
+    throw InvariantViolation(o.str());
+  }
+}
+
+uint64_t World::stateHash() const {
+  uint64_t h = 1469598103934665603ULL;
+  auto mix = [&](const void* data, size_t bytes) {
+    const auto* c = static_cast<const unsigned char*>(data);
+    for (size_t k = 0; k < bytes; ++k) h = (h ^ c[k]) * 1099511628211ULL;
+  };
+  uint64_t n = f_.size();
+  mix(&n, sizeof n);
+  mix(f_.x.data(), n * sizeof(Vec3f));
+  mix(f_.v.data(), n * sizeof(Vec3f));
+  mix(hf_.heights().data(), hf_.heights().size() * sizeof(double));
+  mix(&time_, sizeof time_);
+  return h;
+}
+
+size_t World::memoryBytes() const {
+  size_t per = sizeof(Vec3f) * 4 + sizeof(float) * 2 + sizeof(uint32_t);  // x v a vhat rho p id
+  return f_.x.capacity() * per + grid_.bytes() + nbrs_.bytes() + bnbrs_.bytes() +
+         b_.x.capacity() * (sizeof(Vec3f) + sizeof(int) + sizeof(double)) +
+         (bstart_.capacity() + bsorted_.capacity()) * sizeof(uint32_t);
+}
+
+}  // namespace scour

@@ -1,0 +1,150 @@
+#pragma once
+// World: the whole simulation state and the step that advances it.
+//
+// Threading contract: a World is touched by one thread at a time (the worker that owns it). Inside
+// step(), passes run OpenMP loops; when step() returns, no parallel work is running. Every loop
+// gathers into its own particle (no scatter, no float atomics) and every reduction that is not a
+// min/max runs in a fixed order, so the state after N steps is bit-identical at any thread count.
+//
+// The step (model.md §7, leapfrog kick–drift–kick, velocities at half steps):
+//   choose Δt → kick ½Δt, drift → sinks / outflow → sources → [reorder along Z] → neighbor search →
+//   boundary particles of the tiles near water → density, pressure → forces → boundary forces →
+//   no-slip → kick ½Δt → invariants.
+// Passes that the scene does not call for (no sources, no friction, …) are not run at all.
+
+#include <array>
+#include <chrono>
+#include <cstdint>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "engine/boundary.h"
+#include "engine/fluid.h"
+#include "engine/heightfield.h"
+#include "engine/neighbors.h"
+#include "engine/params.h"
+#include "engine/sources.h"
+#include "engine/sph.h"
+
+namespace scour {
+
+enum class Pass {
+  kNeighborSearch,
+  kDensity,
+  kForces,
+  kBoundaryForces,
+  kIntegrate,
+  kSources,
+  kSinks,
+  kBoundaryParticles,
+  kBoundaryNeighbors,
+  kNoSlip,
+  kInvariants,
+  kCount
+};
+const char* passName(Pass p);
+
+/// The paper's Table 1 columns a pass belongs to.
+enum class Table1Group { kSph, kErosion, kBoundary, kOther };
+Table1Group table1Group(Pass p);
+
+/// Effects a scene calls for; a pass whose effect is off is not in the pass list.
+struct Effects {
+  bool surface_tension = false;
+  bool no_slip = false;
+};
+
+struct InvariantReport {
+  long nan = 0;                          ///< non-finite values seen
+  double max_penetration_over_ds = 0.0;  ///< deepest particle below the terrain, in Δs
+  long escaped = 0;                      ///< particles found beyond a closed wall
+};
+
+class InvariantViolation : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+struct StepStats {
+  double dt = 0, time = 0, max_speed = 0;
+  size_t particles = 0;
+  long step = 0;
+};
+
+struct WorldDesc {
+  SimParams params;
+  Heightfield terrain;
+  Domain domain;
+  Effects effects;
+  std::vector<Eigen::Vector3f> particles;  ///< initial positions (at rest)
+  std::vector<Source> sources;
+  std::vector<Sink> sinks;
+};
+
+class World {
+ public:
+  /// Validates the description (throws std::invalid_argument with the field named).
+  explicit World(WorldDesc desc);
+
+  StepStats step();
+
+  const SimParams& params() const { return p_; }
+  const Heightfield& terrain() const { return hf_; }
+  const Fluid& fluid() const { return f_; }
+  const BoundaryParticles& boundary() const { return b_; }
+  const NeighborLists& neighbors() const { return nbrs_; }
+  const Domain& domain() const { return dom_; }
+  double time() const { return time_; }
+  long steps() const { return step_; }
+  double lastDt() const { return dt_; }
+
+  /// Seconds spent in each pass, and how often it ran, since construction.
+  const std::array<double, size_t(Pass::kCount)>& passSeconds() const { return passSeconds_; }
+  const std::array<long, size_t(Pass::kCount)>& passCalls() const { return passCalls_; }
+  const InvariantReport& invariants() const { return inv_; }
+  long removedBySinks() const { return removedSinks_; }
+  long removedByOutflow() const { return removedOutflow_; }
+  long emitted() const { return emittedTotal_; }
+  long blockedSlots() const;
+
+  /// FNV-1a over particle count, positions, velocities, heights and time.
+  uint64_t stateHash() const;
+  /// Bytes held by particle arrays, grid and neighbor lists.
+  size_t memoryBytes() const;
+
+ private:
+  template <class F>
+  void timed(Pass pass, F&& f);
+  double chooseDt() const;
+  void searchNeighbors();
+  void computeAccelerations();
+  void removeParticles();
+  void emit();
+  void checkInvariants();
+
+  SimParams p_;
+  SphConstants k_;
+  Heightfield hf_;
+  Domain dom_;
+  Effects fx_;
+  Fluid f_;
+  std::vector<Vec3f> vhat_;
+  std::vector<Emitter> emitters_;
+  std::vector<Sink> sinks_;
+  Grid grid_;
+  NeighborLists nbrs_, bnbrs_;
+  BoundarySampler sampler_;
+  BoundaryParticles b_;
+  std::vector<uint32_t> bstart_, bsorted_;
+  double time_ = 0, dt_ = 0;
+  long step_ = 0;
+  uint32_t nextId_ = 0;
+  long removedSinks_ = 0, removedOutflow_ = 0, emittedTotal_ = 0;
+  InvariantReport inv_;
+  std::array<double, size_t(Pass::kCount)> passSeconds_{};
+  std::array<long, size_t(Pass::kCount)> passCalls_{};
+};
+
+}  // namespace scour

@@ -1,0 +1,17 @@
+# Turns Debian 12 system packages into CMake targets. Nothing here is vendored or downloaded:
+# scripts/setup.sh installs the packages, this file only finds them.
+find_package(Eigen3 3.4 REQUIRED NO_MODULE)
+find_package(OpenMP REQUIRED)
+find_package(nlohmann_json 3.10 REQUIRED)
+find_package(CLI11 2.1 REQUIRED)
+find_package(PNG REQUIRED)
+
+# Catch2 2.x ships a single header (catch2/catch.hpp) and a CMake config.
+find_package(Catch2 2.13 REQUIRED)
+
+# stb (libstb-dev): headers under /usr/include/stb, implementation in libstb.
+find_path(STB_INCLUDE_DIR stb_image.h PATH_SUFFIXES stb REQUIRED)
+find_library(STB_LIBRARY stb REQUIRED)
+add_library(scour_stb INTERFACE)
+target_include_directories(scour_stb SYSTEM INTERFACE ${STB_INCLUDE_DIR})
+target_link_libraries(scour_stb INTERFACE ${STB_LIBRARY})
