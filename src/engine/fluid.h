@@ -18,14 +18,15 @@ struct Fluid {
   std::vector<float> rho;    ///< density [kg/m³]
   std::vector<float> p;      ///< pressure [Pa]
   std::vector<uint32_t> id;  ///< creation number, stable across reorders
+  std::vector<float> scratch;  ///< per-particle workspace of a pass (no meaning between passes)
 
   size_t size() const { return x.size(); }
 
-  void push(const Vec3f& pos, const Vec3f& vel, uint32_t ident) {
+  void push(const Vec3f& pos, const Vec3f& vel, uint32_t ident, float density) {
     x.push_back(pos);
     v.push_back(vel);
     a.push_back(Vec3f::Zero());
-    rho.push_back(0.0f);
+    rho.push_back(density);
     p.push_back(0.0f);
     id.push_back(ident);
   }

@@ -10,6 +10,7 @@ namespace scour {
 namespace {
 
 const char* const kEosChoices[] = {"tait", "ideal_gas", nullptr};
+const char* const kDensityChoices[] = {"continuity", "summation", nullptr};
 
 ParamInfo real(const char* key, const char* label, const char* symbol, const char* unit,
                double lo, double hi, const char* help, double SimParams::*m) {
@@ -42,9 +43,15 @@ std::vector<ParamInfo> makeTable() {
       integer("fluid.eos", "Equation of state", "", "-", 0, 1,
               "tait: p = B((ρ/ρ0)^7 − 1); ideal_gas: Müller's p = c_s²(ρ − ρ0).", &P::eos,
               kEosChoices),
+      integer("fluid.density", "Density method", "", "-", 0, 1,
+              "continuity: dρ/dt from the velocity divergence (+ δ-SPH); summation: ρ = Σ m W.",
+              &P::density, kDensityChoices),
+      real("fluid.density_diffusion", "Density diffusion", "δ", "-", 0.0, 1.0,
+           "δ-SPH diffusion of the continuity density (Molteni & Colagrossi 2009).",
+           &P::density_diffusion),
       real("fluid.viscosity", "Viscosity", "ν", "m²/s", 0.0, 10.0,
            "Artificial kinematic viscosity (viscosity-kernel Laplacian).", &P::viscosity),
-      real("fluid.surface_tension", "Surface tension", "κ", "1/s²", 0.0, 1e6,
+      real("fluid.surface_tension", "Surface tension", "κ", "m³/s²", 0.0, 1.0,
            "Becker–Teschner cohesion strength.", &P::surface_tension),
       real("fluid.gravity", "Gravity", "g", "m/s²", 0.0, 100.0,
            "Gravitational acceleration, pointing along −y.", &P::gravity),

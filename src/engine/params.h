@@ -24,9 +24,13 @@ struct SimParams {
   double sound_speed = 20.0;
   /// Equation of state: 0 = Tait (default), 1 = Müller's ideal gas p = k(ρ − ρ0), k = c_s².
   int eos = 0;
+  /// Density: 0 = continuity equation with δ-SPH diffusion (default), 1 = kernel summation.
+  int density = 0;
+  /// δ, δ-SPH density diffusion coefficient (continuity density only) [-].
+  double density_diffusion = 0.1;
   /// ν, artificial kinematic viscosity for the viscosity-kernel Laplacian term [m²/s].
   double viscosity = 1e-3;
-  /// κ, Becker–Teschner cohesion strength [1/s²].
+  /// κ, Becker–Teschner cohesion strength [m³/s²].
   double surface_tension = 0.0;
   /// g, gravitational acceleration along −y [m/s²].
   double gravity = 9.81;

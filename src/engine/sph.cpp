@@ -25,6 +25,8 @@ SphConstants::SphConstants(const SimParams& p)
       rho0(p.rest_density),
       c2(p.sound_speed * p.sound_speed),
       tait_b(p.rest_density * p.sound_speed * p.sound_speed / 7.0),
+      delta(p.density_diffusion),
+      continuity(p.density == 0),
       tait(p.equationOfState() == EquationOfState::kTait),
       nu(float(p.viscosity)),
       kappa(float(p.surface_tension)),
@@ -37,13 +39,32 @@ SphConstants::SphConstants(const SimParams& p)
       spiky(h),
       visc(h) {
   mass = p.rest_density / latticeSum(poly6, p.spacing, h);
+  // The spiky gradient, like any kernel gradient, should satisfy Σ_j V_j (x_j − x_i) ⊗ ∇W_ij = I
+  // on the rest lattice, so that a linear pressure field gives back its gradient. At h = 2Δs it
+  // misses by ~15 %, and a still column then settles at 15 % more than hydrostatic pressure.
+  // Rescale it (per axis the lattice is isotropic, so one factor serves).
+  {
+    const int K = int(std::ceil(h / p.spacing));
+    const double vol = mass / rho0;
+    double s = 0;
+    for (int c = -K; c <= K; ++c)
+      for (int b = -K; b <= K; ++b)
+        for (int a = -K; a <= K; ++a) {
+          double r = p.spacing * std::sqrt(double(a * a + b * b + c * c));
+          if (r > 0) s += -vol * (a * p.spacing) * (a * p.spacing) / r * spiky(float(r));
+        }
+    spiky.coef = float(spiky.coef / s);
+  }
   buildWallTables(p.spacing);
 }
 
 void SphConstants::buildWallTables(double ds) {
-  // Layer sums of the rest lattice at vertical offset k·Δs: L_k = Σ W, D_k = Σ |dW/dr|·|kΔs|/r.
+  // Φ(d), for the summation density: the rest lattice's layers at offset k·Δs along the normal,
+  // each standing for a slab [z − Δs/2, z + Δs/2] (z = d + kΔs its distance from the wall) whose
+  // share beyond the wall is missing. A particle resting on the lattice next to a wall then reads
+  // ρ0 exactly.
   const int K = int(std::ceil(h / ds)) + 1;
-  std::vector<double> L(2 * K + 1, 0.0), D(2 * K + 1, 0.0);
+  std::vector<double> L(2 * K + 1, 0.0);
   double total = 0;
   for (int k = -K; k <= K; ++k)
     for (int b = -K; b <= K; ++b)
@@ -52,30 +73,49 @@ void SphConstants::buildWallTables(double ds) {
         double w = poly6(float(r * r));
         L[k + K] += w;
         total += w;
-        if (r > 0) D[k + K] += -spiky(float(r)) * std::abs(k * ds) / r;
       }
+  // G(d), M_n(d), M_t(d), for the forces: continuum integrals over the half-space beyond the
+  // wall, sliced along the normal (slice z < −d is beyond). Smooth in d, which keeps the wall
+  // quiet; a lattice version has kinks at the slab edges that make it ring.
+  const int nz = 1000, nr = 200;
+  const double dz = 2.0 * h / nz;
+  std::vector<double> sliceG(nz), sliceN(nz), sliceT(nz), sliceZ(nz);
+  for (int a = 0; a < nz; ++a) {
+    const double z = -h + (a + 0.5) * dz;
+    const double R = std::sqrt(std::max(h * h - z * z, 0.0)), dr = R / nr;
+    double g = 0, mn = 0, mt = 0;
+    for (int b = 0; b < nr; ++b) {
+      const double rho = (b + 0.5) * dr, r = std::sqrt(rho * rho + z * z);
+      const double dw = -spiky(float(r)), ring = 2.0 * std::numbers::pi * rho * dr;
+      g += dw * std::abs(z) / r * ring;
+      mn += dw * z * z / r * ring;
+      mt += dw * 0.5 * rho * rho / r * ring;  // x² averaged over the ring
+    }
+    sliceZ[a] = z;
+    sliceG[a] = g * dz;
+    sliceN[a] = mn * dz;
+    sliceT[a] = mt * dz;
+  }
   phi.assign(kTable + 1, 0.0);
   grad.assign(kTable + 1, 0.0);
+  momentN.assign(kTable + 1, 0.0);
+  momentT.assign(kTable + 1, 0.0);
   for (int t = 0; t <= kTable; ++t) {
-    double d = -h + 2.0 * h * t / kTable;
-    double missing = 0, missingGrad = 0;
-    for (int k = -K; k < 0; ++k) {  // layers below the particle (toward the wall)
-      // The layer's slab [z − Δs/2, z + Δs/2], z = d + kΔs its distance from the wall: the share
-      // beyond the wall is missing.
-      double z = d + k * ds;
-      double beyond = std::clamp(0.5 - z / ds, 0.0, 1.0);
-      missing += beyond * L[k + K];
-      missingGrad += beyond * D[k + K];
-    }
-    // Layers at and above the particle can be beyond the wall only when it has penetrated.
-    for (int k = 0; k <= K; ++k) {
-      double z = d + k * ds;
-      double beyond = std::clamp(0.5 - z / ds, 0.0, 1.0);
-      missing += beyond * L[k + K];
-      missingGrad -= beyond * D[k + K];
-    }
+    const double d = -h + 2.0 * h * t / kTable;
+    double missing = 0;
+    for (int k = -K; k <= K; ++k) missing += std::clamp(0.5 - (d + k * ds) / ds, 0.0, 1.0) * L[k + K];
     phi[t] = missing / total;
-    grad[t] = std::max(missingGrad, 0.0);
+    // Slices below the particle (z < 0) would push it away from the wall, slices above it
+    // (beyond the wall only once it has penetrated) toward it.
+    double g = 0, mn = 0, mt = 0;
+    for (int a = 0; a < nz && sliceZ[a] < -d; ++a) {
+      g += (sliceZ[a] < 0 ? 1.0 : -1.0) * sliceG[a];
+      mn += sliceN[a];
+      mt += sliceT[a];
+    }
+    grad[t] = std::max(g, 0.0) * rho0 / mass;  // per unit particle mass, like a lattice sum
+    momentN[t] = mn;
+    momentT[t] = mt;
   }
 }
 
@@ -103,10 +143,66 @@ void computeDensity(const SphConstants& k, const NeighborLists& nbrs, const Heig
       inside *= 1.0 - k.halfSpaceDensity(d);
     });
     double rho = self + m * sum + k.rho0 * (1.0 - inside);
-    double pr = k.tait ? k.tait_b * (std::pow(rho / k.rho0, 7.0) - 1.0) : k.c2 * (rho - k.rho0);
     f.rho[i] = float(rho);
-    f.p[i] = float(std::max(pr, 0.0));  // free surface: no tension from the equation of state
+    f.p[i] = float(k.pressure(rho));
   }
+}
+
+void integrateDensity(const SphConstants& k, const NeighborLists& nbrs, const Heightfield& hf,
+                      const Domain& dom, const std::vector<Vec3f>& v, double dt, Fluid& f) {
+  const size_t n = f.size();
+  const float m = float(k.mass);
+  const float diffusion = float(k.delta * k.h * std::sqrt(k.c2));
+  const float hydro = float(k.rho0 * k.gravity / k.c2);
+  std::vector<float>& next = f.scratch;
+  next.resize(n);
+#pragma omp parallel for schedule(static)
+  for (size_t i = 0; i < n; ++i) {
+    const Vec3f vi = v[i];
+    const float rhoi = f.rho[i];
+    float div = 0.0f, diff = 0.0f;
+    forEachNeighbor(nbrs, f.x, f.x, i, [&](uint32_t j, const Vec3f& xij, float r) {
+      if (r <= 0.0f) return;
+      const float dw = k.spiky(r);  // dW/dr ≤ 0; ∇_i W_ij = x_ij/r · dW/dr
+      div += m * (vi - v[j]).dot(xij) * (dw / r);
+      // δ-SPH (Molteni & Colagrossi 2009): ψ_ij·∇_i W_ij V_j, ψ_ij = 2(ρ_j − ρ_i) x_ji / r²,
+      // less the hydrostatic density difference ρ0 g (y_i − y_j)/c_s² (Fourtakas et al. 2019):
+      // near a wall or the surface the truncated sum would otherwise diffuse the hydrostatic
+      // stratification away and the bottom layers would lose pressure.
+      const float drho = f.rho[j] - rhoi - hydro * xij.y();
+      diff += -2.0f * drho * (dw / r) * (m / f.rho[j]);
+    });
+    // A wall at rest adds ρ0 v_i·∫∇_i W over the half-space beyond it = −ρ0 A(d) (v_i·n).
+    double wall = 0.0;
+    forEachWall(hf, dom, k.h, f.x[i], [&](const Eigen::Vector3d& nrm, double d) {
+      wall -= k.rho0 * k.planeDensity(d) * vi.cast<double>().dot(nrm);
+    });
+    double rho = rhoi + dt * (double(div) + double(diffusion * diff) + wall);
+    next[i] = float(rho);
+  }
+#pragma omp parallel for schedule(static)
+  for (size_t i = 0; i < n; ++i) {
+    f.rho[i] = next[i];
+    f.p[i] = float(k.pressure(next[i]));
+  }
+}
+
+double SphConstants::pressure(double rho) const {
+  double pr = tait ? tait_b * (std::pow(rho / rho0, 7.0) - 1.0) : c2 * (rho - rho0);
+  return std::max(pr, 0.0);  // free surface: no tension from the equation of state
+}
+
+double SphConstants::densityFor(double pressure) const {
+  return tait ? rho0 * std::pow(1.0 + pressure / tait_b, 1.0 / 7.0) : rho0 + pressure / c2;
+}
+
+double SphConstants::planeDensity(double d) const {
+  // A(d) = ∫ W_poly6 over a plane at distance |d| = (π c / 4)(h² − d²)⁴, c the poly6 constant:
+  // the continuum −dΦ/dd. (The lattice table's own derivative has kinks at the slab edges, which
+  // make the wall ring.)
+  if (std::abs(d) >= h) return 0.0;
+  double e = h * h - d * d;
+  return std::numbers::pi / 4.0 * 315.0 / (64.0 * std::numbers::pi * std::pow(h, 9)) * e * e * e * e;
 }
 
 void computeForces(const SphConstants& k, const NeighborLists& nbrs,
@@ -143,8 +239,16 @@ void applyBoundaryForces(const SphConstants& k, const Heightfield& hf, const Dom
     const double pressure = 2.0 * k.mass * f.p[i] / (double(f.rho[i]) * f.rho[i]);
     Eigen::Vector3d acc = Eigen::Vector3d::Zero();
     const Eigen::Vector3d v = vhat[i].cast<double>();
+    const double rhoRatio = k.rho0 / f.rho[i];
     forEachWall(hf, dom, k.h, f.x[i], [&](const Eigen::Vector3d& nrm, double d) {
       acc += pressure * k.wallGradient(d) * nrm;
+      // The mirrored pressure grows hydrostatically into the wall, p_j = p_i + ρ0 g⃗·(x_j − x_i);
+      // its share of the gradient is −(ρ0/ρ_i) M(d) g⃗, M the missing second moment of the
+      // kernel-gradient identity. Without it, water along a vertical wall loses part of its
+      // support against gravity and sinks in a steady convection cell.
+      const double mn = k.momentNormal(d), mt = k.momentTangential(d);
+      const Eigen::Vector3d g(0.0, -k.gravity, 0.0);
+      acc -= rhoRatio * (mt * g + (mn - mt) * nrm.dot(g) * nrm);
       if (d < k.contact) {
         // Eq. (6): f_np = (K_S d − (v·n) K_D) n, damping only for an approaching particle.
         double vn = std::min(v.dot(nrm), 0.0);

@@ -40,7 +40,8 @@ struct Domain {
 /// Constants of one step, derived from SimParams once.
 struct SphConstants {
   explicit SphConstants(const SimParams& p);
-  double h, mass, rho0, c2, tait_b;
+  double h, mass, rho0, c2, tait_b, delta;
+  bool continuity;
   bool tait;
   float nu, kappa, gravity, ks, kd, contact, friction;
   Poly6 poly6;
@@ -48,12 +49,23 @@ struct SphConstants {
   ViscosityLaplacian visc;
   /// Φ(d): share of the rest-lattice density sum beyond a plane at signed distance d.
   double halfSpaceDensity(double d) const { return lookup(phi, d); }
-  /// G(d): missing Σ |∇W_spiky|·(normal component) of the lattice beyond the plane [1/m⁴].
+  /// Equation of state (Tait or ideal gas), clamped at p ≥ 0 for free surfaces.
+  double pressure(double rho) const;
+  /// Inverse of the equation of state, for initial hydrostatic states.
+  double densityFor(double pressure) const;
+  /// A(d) = ∫ W_poly6 over a plane at distance |d| [1/m]: in the continuum, how fast the wall's
+  /// share of the density grows as d shrinks (−dΦ/dd).
+  double planeDensity(double d) const;
+  /// G(d): missing Σ_j |∇W_spiky|·(normal component) beyond the plane, per unit particle mass.
   double wallGradient(double d) const { return lookup(grad, d); }
+  /// Missing share of Σ V x_ij x_ijᵀ |∇W|/r (= I in the interior) beyond the plane, along its
+  /// normal and along a tangent.
+  double momentNormal(double d) const { return lookup(momentN, d); }
+  double momentTangential(double d) const { return lookup(momentT, d); }
 
  private:
   static constexpr int kTable = 1024;
-  std::vector<double> phi, grad;  // over d ∈ [−h, h]
+  std::vector<double> phi, grad, momentN, momentT;  // over d ∈ [−h, h]
   double lookup(const std::vector<double>& t, double d) const;
   void buildWallTables(double spacing);
 };
@@ -76,6 +88,13 @@ inline void forEachWall(const Heightfield& hf, const Domain& dom, double h, cons
 /// ρ_i = Σ_j m W(r_ij) (self included) + wall terms; then p_i from the equation of state.
 void computeDensity(const SphConstants& k, const NeighborLists& nbrs, const Heightfield& hf,
                     const Domain& dom, Fluid& f);
+
+/// Continuity density (the default): dρ_i/dt = Σ_j m (v_i − v_j)·∇W_ij + δ-SPH diffusion + the
+/// walls' share, integrated over dt with the drift velocity v; then p_i. Unlike the summation it
+/// reads ρ0 at a free surface and does not drift with the particle arrangement, which is what
+/// keeps a still column at hydrostatic pressure.
+void integrateDensity(const SphConstants& k, const NeighborLists& nbrs, const Heightfield& hf,
+                      const Domain& dom, const std::vector<Vec3f>& v, double dt, Fluid& f);
 
 /// Pressure, viscosity, surface tension and gravity: a_i. `vhat` is the velocity at the force
 /// time (the leapfrog's predicted full-step velocity).

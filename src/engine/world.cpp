@@ -79,9 +79,13 @@ World::World(WorldDesc d)
     require(src.center.allFinite(), at + ".position must be finite");
     emitters_.emplace_back(src, p_.spacing);
   }
-  for (const auto& x : d.particles) {
-    require(x.allFinite(), "particles: positions must be finite");
-    f_.push(x, Vec3f::Zero(), nextId_++);
+  require(d.pressure.empty() || d.pressure.size() == d.particles.size(),
+          "pressure: one value per particle expected");
+  for (size_t i = 0; i < d.particles.size(); ++i) {
+    require(d.particles[i].allFinite(), "particles: positions must be finite");
+    double p0 = d.pressure.empty() ? 0.0 : d.pressure[i];
+    require(std::isfinite(p0) && p0 >= 0, "pressure: must be finite and ≥ 0");
+    f_.push(d.particles[i], Vec3f::Zero(), nextId_++, float(k_.densityFor(p0)));
   }
   searchNeighbors();
   computeAccelerations();
@@ -130,7 +134,12 @@ void World::searchNeighbors() {
 
 void World::computeAccelerations() {
   if (vhat_.size() != f_.size()) vhat_ = f_.v;
-  timed(Pass::kDensity, [&] { computeDensity(k_, nbrs_, hf_, dom_, f_); });
+  timed(Pass::kDensity, [&] {
+    if (k_.continuity)
+      integrateDensity(k_, nbrs_, hf_, dom_, f_.v, dt_, f_);  // f_.v holds v(t + Δt/2) here
+    else
+      computeDensity(k_, nbrs_, hf_, dom_, f_);
+  });
   timed(Pass::kForces, [&] { computeForces(k_, nbrs_, vhat_, f_); });
   timed(Pass::kBoundaryForces, [&] { applyBoundaryForces(k_, hf_, dom_, vhat_, f_); });
   if (fx_.no_slip) timed(Pass::kNoSlip, [&] { applyNoSlip(k_, bnbrs_, b_, vhat_, f_); });
@@ -180,7 +189,7 @@ void World::emit() {
             ++e.blocked;
             continue;
           }
-          f_.push(pos, vel, nextId_++);
+          f_.push(pos, vel, nextId_++, float(p_.rest_density));
           vhat_.push_back(vel);
           ++e.emitted;
           ++emittedTotal_;

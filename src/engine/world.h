@@ -79,6 +79,9 @@ struct WorldDesc {
   Domain domain;
   Effects effects;
   std::vector<Eigen::Vector3f> particles;  ///< initial positions (at rest)
+  /// Initial pressure of each particle [Pa] (e.g. hydrostatic); empty = 0. Sets the initial
+  /// continuity density through the inverse equation of state.
+  std::vector<float> pressure;
   std::vector<Source> sources;
   std::vector<Sink> sinks;
 };

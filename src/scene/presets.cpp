@@ -19,11 +19,14 @@ const std::vector<PresetInfo>& presetList() {
 void fillBlock(Scene& s, const Eigen::Vector3d& lo, const Eigen::Vector3d& hi) {
   const double ds = s.desc.params.spacing;
   Eigen::Vector3i n = ((hi - lo) / ds).array().round().cast<int>();
+  const double top = lo.y() + n.y() * ds, rhoG = s.desc.params.rest_density * s.desc.params.gravity;
   for (int k = 0; k < n.z(); ++k)
     for (int j = 0; j < n.y(); ++j)
-      for (int i = 0; i < n.x(); ++i)
-        s.desc.particles.push_back(
-            (lo + ds * Eigen::Vector3d(i + 0.5, j + 0.5, k + 0.5)).cast<float>());
+      for (int i = 0; i < n.x(); ++i) {
+        Eigen::Vector3d x = lo + ds * Eigen::Vector3d(i + 0.5, j + 0.5, k + 0.5);
+        s.desc.particles.push_back(x.cast<float>());
+        s.desc.pressure.push_back(float(rhoG * (top - x.y())));  // at rest: hydrostatic
+      }
   s.water_blocks.emplace_back(lo, hi);
 }
 
@@ -47,7 +50,6 @@ Scene dambreak(double scale) {
   p.spacing = a / n;
   p.sound_speed = 20.0;  // > 10 × √(2 g · 2a) ≈ 15 m/s
   p.viscosity = 5e-4;
-  s.desc.effects.no_slip = true;
   double depth = 6 * p.spacing;
   s.desc.terrain = flat(10 * a, depth, a / 4);
   s.terrain_kind = "flat";
