@@ -11,6 +11,7 @@
 // cell coordinates; World applies it every few steps so that neighbors are near in memory.
 
 #include <Eigen/Core>
+#include <algorithm>
 #include <cstdint>
 #include <vector>
 
@@ -38,19 +39,23 @@ class Grid {
   const std::vector<uint32_t>& start() const { return start_; }
   const std::vector<uint32_t>& sorted() const { return sorted_; }
 
-  /// Calls f(j) for every indexed point j in the 27 cells around p (no distance test).
+  /// Calls f(j) for every indexed point j in the 27 cells around p (no distance test). Cells
+  /// cx−1..cx+1 of one row are consecutive in the linear order, so each of the 9 rows is one
+  /// contiguous range of the sorted array.
   template <class F>
   void forEachCandidate(const Vec3f& p, const std::vector<uint32_t>& start,
                         const std::vector<uint32_t>& sorted, F&& f) const {
     Eigen::Vector3i c = cellOf(p);
-    for (int dz = -1; dz <= 1; ++dz)
-      for (int dy = -1; dy <= 1; ++dy)
-        for (int dx = -1; dx <= 1; ++dx) {
-          int cx = c.x() + dx, cy = c.y() + dy, cz = c.z() + dz;
-          if (!inside(cx, cy, cz)) continue;
-          int l = linear(cx, cy, cz);
-          for (uint32_t k = start[l]; k < start[l + 1]; ++k) f(sorted[k]);
-        }
+    const int xa = std::max(c.x() - 1, 0), xb = std::min(c.x() + 1, dims_.x() - 1);
+    if (xa > xb) return;
+    for (int cz = c.z() - 1; cz <= c.z() + 1; ++cz) {
+      if (cz < 0 || cz >= dims_.z()) continue;
+      for (int cy = c.y() - 1; cy <= c.y() + 1; ++cy) {
+        if (cy < 0 || cy >= dims_.y()) continue;
+        const uint32_t b = start[linear(xa, cy, cz)], e = start[linear(xb, cy, cz) + 1];
+        for (uint32_t k = b; k < e; ++k) f(sorted[k]);
+      }
+    }
   }
 
   /// Morton-order permutation of the points last passed to build().

@@ -1,0 +1,64 @@
+#!/usr/bin/env bash
+# `scour run` writes the outputs the contract names: summary.json with its fields, PLY dumps with
+# the simulated time in the header, no temporary files left; `scour bench --json` prints one
+# JSON object with the contract's fields.
+set -euo pipefail
+scour="$1"
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+"$scour" run dambreak --headless --steps 20 --particles-every 10 --threads 2 --out "$tmp/run" >/dev/null
+ls "$tmp/run"
+python3 - "$tmp/run" <<'PY'
+import json, os, sys
+d = sys.argv[1]
+s = json.load(open(os.path.join(d, "summary.json")))
+for k in ["particles", "steps", "sim_time_s", "wall_s", "pass_seconds", "invariants", "state_hash", "scene"]:
+    assert k in s, f"summary.json lacks {k}"
+assert s["steps"] == 20 and s["particles"] > 1000, s
+for k in ["nan", "max_penetration_over_ds", "escaped"]:
+    assert k in s["invariants"], k
+assert s["invariants"]["nan"] == 0 and s["invariants"]["escaped"] == 0
+assert s["scene"]["params"]["fluid"]["spacing"] > 0 and "terrain" in s["scene"]
+assert set(s["pass_seconds"]) >= {"neighbor_search", "density", "forces", "integrate"}
+assert len(s["state_hash"]) == 16
+names = sorted(f for f in os.listdir(d) if f.endswith(".ply"))
+assert names == ["particles_000000.ply", "particles_000010.ply", "particles_000020.ply"], names
+assert not [f for f in os.listdir(d) if ".tmp" in f], os.listdir(d)
+head = open(os.path.join(d, names[-1]), "rb").read(400).split(b"end_header")[0].decode()
+assert "format binary_little_endian 1.0" in head and "comment time_s " in head
+t = float(head.split("comment time_s ")[1].split()[0])
+assert abs(t - s["sim_time_s"]) < 1e-12, (t, s["sim_time_s"])
+n = int(head.split("element vertex ")[1].split()[0])
+assert n == s["particles"]
+size = os.path.getsize(os.path.join(d, names[-1]))
+assert size == len(head) + len("end_header\n") + n * 24, "PLY body is 6 floats per particle"
+print("run outputs ok")
+PY
+"$scour" bench dambreak --steps 3 --warmup 1 --threads 1 --json > "$tmp/bench.json"
+python3 - "$tmp/bench.json" <<'PY'
+import json, sys
+b = json.load(open(sys.argv[1]))
+for k in ["particles", "threads", "steps", "seconds_per_step", "table1", "particle_steps_per_second_per_core"]:
+    assert k in b, k
+assert b["threads"] == 1 and b["steps"] == 3
+assert "total" in b["seconds_per_step"] and set(b["table1"]) == {"sph", "erosion", "boundary"}
+assert b["particle_steps_per_second_per_core"] > 0
+print("bench json ok")
+PY
+# Same run at 1 and 2 threads: same state hash.
+"$scour" run dambreak --headless --steps 30 --threads 1 --out "$tmp/t1" >/dev/null
+"$scour" run dambreak --headless --steps 30 --threads 2 --out "$tmp/t2" >/dev/null
+h1=$(python3 -c "import json;print(json.load(open('$tmp/t1/summary.json'))['state_hash'])")
+h2=$(python3 -c "import json;print(json.load(open('$tmp/t2/summary.json'))['state_hash'])")
+[ "$h1" = "$h2" ] || { echo "state hash differs: $h1 vs $h2"; exit 1; }
+echo "hash identical at 1 and 2 threads: $h1"
+# A violated invariant: exit 3, the message names step and particle, summary.json says so.
+set +e
+msg=$("$scour" run slope --headless --steps 3000 --set fluid.gravity=100 --set boundary.penalty_stiffness=1 \
+      --set boundary.penalty_damping=1 --out "$tmp/bad" 2>&1)
+rc=$?
+set -e
+[ $rc -eq 3 ] || { echo "expected exit 3, got $rc: $msg"; exit 1; }
+grep -q "invariant violated at step " <<<"$msg" || { echo "message: $msg"; exit 1; }
+python3 -c "import json,sys; s=json.load(open('$tmp/bad/summary.json')); assert s['status']=='invariant_violated' and 'particle' in s['error'], s"
+echo "invariant violation reported: $(head -1 <<<"$msg")"
