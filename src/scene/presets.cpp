@@ -120,6 +120,8 @@ Scene block(double scale, long particles) {
   p.spacing = 0.05;
   p.sound_speed = 20.0;
   p.viscosity = 1e-3;
+  p.boundary_friction = 1e-5;
+  s.desc.effects.no_slip = true;  // so the bench times the boundary particles too
   long target = particles > 0 ? particles : long(136000 * scale);
   const int layers = 16;
   double side = std::sqrt(double(target) / layers) * p.spacing;

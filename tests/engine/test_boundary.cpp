@@ -1,0 +1,98 @@
+// Terrain queries and boundary particles: heights and normals of the two-triangle cells, the
+// scanline sampling (areas add up to the triangle, points on the triangle), lazy tiles, and the
+// no-slip friction of eqs. (7)–(8).
+#include <catch2/catch.hpp>
+#include <random>
+
+#include "engine/boundary.h"
+#include "scene/presets.h"
+
+using namespace scour;
+
+TEST_CASE("heightfield height and normal are those of the triangle under the point", "[terrain]") {
+  // A plane h = 0.3 x − 0.2 z + 1 is reproduced exactly, with its normal.
+  Heightfield hf(9, 7, 0.5, 0.25, -1.0, 2.0);
+  for (int k = 0; k < hf.nz(); ++k)
+    for (int i = 0; i < hf.nx(); ++i)
+      hf.at(i, k) = 0.3 * (hf.x0() + i * hf.dx()) - 0.2 * (hf.z0() + k * hf.dz()) + 1.0;
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> ux(hf.x0(), hf.xMax()), uz(hf.z0(), hf.zMax());
+  Eigen::Vector3d n = Eigen::Vector3d(-0.3, 1.0, 0.2).normalized();
+  for (int t = 0; t < 200; ++t) {
+    double x = ux(rng), z = uz(rng);
+    SurfacePoint s = hf.surface(x, z);
+    REQUIRE(s.height == Approx(0.3 * x - 0.2 * z + 1.0).margin(1e-12));
+    REQUIRE((s.normal - n).norm() < 1e-12);
+    // The triangle reported contains the point (in x–z).
+    auto c = hf.triangleCorners(s.triangle);
+    auto cross = [](const Eigen::Vector3d& a, const Eigen::Vector3d& b, double px, double pz) {
+      return (b.x() - a.x()) * (pz - a.z()) - (b.z() - a.z()) * (px - a.x());
+    };
+    double s0 = cross(c[0], c[1], x, z), s1 = cross(c[1], c[2], x, z), s2 = cross(c[2], c[0], x, z);
+    REQUIRE(((s0 >= -1e-12 && s1 >= -1e-12 && s2 >= -1e-12) ||
+             (s0 <= 1e-12 && s1 <= 1e-12 && s2 <= 1e-12)));
+  }
+  // Outside the grid the query clamps to the edge.
+  CHECK(hf.heightAt(-10.0, 2.0) == Approx(hf.at(0, 0)));
+}
+
+TEST_CASE("boundary particles cover each triangle with its exact area", "[boundary]") {
+  Heightfield hf(6, 5, 0.3, 0.2);
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> u(0.0, 0.5);
+  for (double& h : hf.heights()) h = u(rng);
+  for (double spacing : {0.5, 0.1, 0.037}) {
+    for (int tri = 0; tri < hf.triangleCount(); ++tri) {
+      BoundaryParticles b;
+      BoundarySampler::sampleTriangle(hf, tri, spacing, b);
+      auto c = hf.triangleCorners(tri);
+      double projected = 0.5 * std::abs((c[1] - c[0]).x() * (c[2] - c[0]).z() -
+                                        (c[1] - c[0]).z() * (c[2] - c[0]).x());
+      double sum = 0;
+      for (double a : b.area) sum += a;
+      REQUIRE(sum == Approx(projected).epsilon(1e-12));
+      double longest = std::max({(c[1] - c[0]).norm(), (c[2] - c[0]).norm(), (c[2] - c[1]).norm()});
+      int n = std::max(1, int(std::ceil(longest / spacing - 1e-9)));
+      REQUIRE(b.size() == size_t(n) * n);
+      for (size_t k = 0; k < b.size(); ++k) {
+        REQUIRE(b.triangle[k] == tri);
+        // On the triangle's plane: the heightfield under the point is the point's height.
+        Eigen::Vector3d p = b.x[k].cast<double>();
+        REQUIRE(hf.surface(p.x(), p.z()).triangle == tri);
+        REQUIRE(hf.heightAt(p.x(), p.z()) == Approx(p.y()).margin(1e-6));
+      }
+    }
+  }
+}
+
+TEST_CASE("boundary particles exist only for tiles near water", "[boundary]") {
+  Heightfield hf(65, 65, 0.1, 0.1);  // 8 × 8 tiles of 8 × 8 cells
+  BoundarySampler sampler(hf, 0.05);
+  std::vector<Vec3f> fluid = {Vec3f(0.35f, 0.05f, 0.35f), Vec3f(0.36f, 0.06f, 0.34f),
+                              Vec3f(5.0f, 3.0f, 5.0f)};  // the last one is far above the ground
+  REQUIRE(sampler.updateActiveTiles(hf, fluid, 0.1));
+  CHECK(sampler.activeTiles() == std::vector<int>{0});
+  BoundaryParticles b;
+  sampler.generate(hf, b);
+  CHECK(b.size() == size_t(8 * 8 * 2 * 9));  // 128 triangles, n = ⌈diagonal 0.141/0.05⌉ = 3
+  CHECK_FALSE(sampler.updateActiveTiles(hf, fluid, 0.1));  // unchanged set
+  fluid.push_back(Vec3f(0.79f, 0.0f, 0.2f));  // within reach of tile 1 (x from 0.8)
+  REQUIRE(sampler.updateActiveTiles(hf, fluid, 0.1));
+  CHECK(sampler.activeTiles() == std::vector<int>{0, 1});
+}
+
+TEST_CASE("no-slip friction slows water down the slope", "[boundary][physics]") {
+  auto meanSpeed = [](double friction) {
+    Scene s = makePreset("slope", 0.25);
+    s.desc.params.boundary_friction = friction;
+    World w(s.desc);
+    for (int k = 0; k < 300; ++k) w.step();
+    double v = 0;
+    for (const auto& u : w.fluid().v) v += u.norm();
+    return v / double(w.fluid().size());
+  };
+  double free = meanSpeed(0.0), sticky = meanSpeed(2e-4);
+  INFO("mean speed without friction " << free << " m/s, with μ_b = 2e-4: " << sticky << " m/s");
+  CHECK(free > 0.3);
+  CHECK(sticky < 0.8 * free);
+}
