@@ -36,12 +36,26 @@ void BoundarySampler::generate(const Heightfield& hf, BoundaryParticles& out) co
   out.x.clear();
   out.triangle.clear();
   out.area.clear();
+  out.bary.clear();
   const int cellsX = hf.nx() - 1, cellsZ = hf.nz() - 1;
   for (int t : active_) {
     int ti = t % tilesX_, tk = t / tilesX_;
     for (int k = tk * kTileCells; k < std::min(cellsZ, (tk + 1) * kTileCells); ++k)
       for (int i = ti * kTileCells; i < std::min(cellsX, (ti + 1) * kTileCells); ++i)
         for (int s = 0; s < 2; ++s) sampleTriangle(hf, 2 * (k * cellsX + i) + s, spacing_, out);
+  }
+}
+
+void BoundarySampler::follow(const Heightfield& hf, const std::vector<int>& triangles,
+                             BoundaryParticles& b) {
+  if (triangles.empty()) return;
+  const size_t n = b.size();
+#pragma omp parallel for schedule(static)
+  for (size_t k = 0; k < n; ++k) {
+    if (!std::binary_search(triangles.begin(), triangles.end(), b.triangle[k])) continue;
+    auto c = hf.triangleCorners(b.triangle[k]);
+    const double u = b.bary[k].x(), w = b.bary[k].y();
+    b.x[k].y() = float(c[0].y() + u * (c[1].y() - c[0].y()) + w * (c[2].y() - c[0].y()));
   }
 }
 
@@ -59,6 +73,7 @@ void BoundarySampler::sampleTriangle(const Heightfield& hf, int tri, double spac
     out.x.push_back(p.cast<float>());
     out.triangle.push_back(tri);
     out.area.push_back(each);
+    out.bary.emplace_back(float(u / n), float(w / n));
   };
   // Row j of the scanline walk: the upward sub-triangles, then the downward ones between them.
   for (int j = 0; j < n; ++j) {

@@ -22,6 +22,7 @@ struct BoundaryParticles {
   std::vector<Vec3f> x;      ///< position on the terrain surface [m]
   std::vector<int> triangle; ///< heightfield triangle id
   std::vector<double> area;  ///< L_b², area the particle stands for [m²]
+  std::vector<Eigen::Vector2f> bary;  ///< (u, w): x = c0 + u (c1 − c0) + w (c2 − c0)
   size_t size() const { return x.size(); }
 };
 
@@ -36,6 +37,8 @@ class BoundarySampler {
   bool updateActiveTiles(const Heightfield& hf, const std::vector<Vec3f>& fluid, double reach);
   /// Regenerates the particles of all active tiles, in tile order.
   void generate(const Heightfield& hf, BoundaryParticles& out) const;
+  /// Moves the particles of the given triangles (sorted ids) onto the current surface.
+  static void follow(const Heightfield& hf, const std::vector<int>& triangles, BoundaryParticles& b);
   /// Appends the particles of one triangle.
   static void sampleTriangle(const Heightfield& hf, int tri, double spacing, BoundaryParticles& out);
 

@@ -18,6 +18,7 @@ struct Fluid {
   std::vector<float> rho;    ///< density [kg/m³]
   std::vector<float> p;      ///< pressure [Pa]
   std::vector<uint32_t> id;  ///< creation number, stable across reorders
+  std::vector<double> sed;   ///< suspended sediment volume [m³]; C = sed / V, V = m/ρ0
   std::vector<float> scratch;  ///< per-particle workspace of a pass (no meaning between passes)
 
   size_t size() const { return x.size(); }
@@ -27,6 +28,7 @@ struct Fluid {
     v.push_back(vel);
     a.push_back(Vec3f::Zero());
     rho.push_back(density);
+    sed.push_back(0.0);
     p.push_back(0.0f);
     id.push_back(ident);
   }

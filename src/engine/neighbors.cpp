@@ -22,6 +22,7 @@ void Fluid::gather(const std::vector<uint32_t>& order) {
   apply(rho);
   apply(p);
   apply(id);
+  apply(sed);
 }
 
 Eigen::Vector3i Grid::cellOf(const Vec3f& p) const {

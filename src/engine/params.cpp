@@ -1,5 +1,7 @@
 #include "engine/params.h"
 
+#include "engine/kernels.h"
+
 #include <algorithm>
 #include <charconv>
 #include <cmath>
@@ -73,6 +75,28 @@ std::vector<ParamInfo> makeTable() {
            &P::contact_over_spacing),
       real("boundary.friction", "No-slip friction", "μ_b", "m³/s", 0.0, 1e3,
            "Eq. (8) friction constant over boundary particles.", &P::boundary_friction),
+      real("erosion.k_eps", "Erosion strength", "Kε", "kg/(m²·s·Pa)", 0.0, 1e4,
+           "Partheniades erosion rate per unit excess shear stress.", &P::k_eps),
+      real("erosion.tau_c", "Critical shear stress", "τc", "Pa", 0.0, 1e6,
+           "Shear stress below which the soil does not erode.", &P::tau_c),
+      real("erosion.shear_k", "Shear constant", "K", "Pa·sⁿ", 0.0, 1e6,
+           "K in the power law τ = K θⁿ.", &P::shear_k),
+      real("erosion.shear_n", "Flow behaviour index", "n", "-", 0.05, 2.0,
+           "n in the power law τ = K θⁿ (paper: 0.5, shear thinning).", &P::shear_n),
+      real("sediment.diffusion", "Sediment diffusivity", "D", "m²/s", 0.0, 10.0,
+           "Kinematic diffusivity of suspended sediment (paper: 0.1).", &P::diffusion),
+      real("sediment.grain_radius", "Grain radius", "r_s", "m", 1e-6, 0.1,
+           "Radius of a sediment grain in the settling velocity, eq. (17).", &P::grain_radius),
+      real("sediment.density", "Sediment density", "ρs", "kg/m³", 1.0, 1e5,
+           "Density of the soil and of suspended sediment.", &P::sediment_density),
+      real("sediment.c_max", "Maximum concentration", "Cmax", "-", 0.01, 1.0,
+           "Largest solid volume fraction a fluid particle can carry.", &P::c_max),
+      real("sediment.rz_exponent", "Richardson–Zaki exponent", "e", "-", 1.0, 10.0,
+           "Exponent of the hindered settling f(C) = 1 − (C/Cmax)^e (4 < e < 5.5).",
+           &P::rz_exponent),
+      real("sediment.settling_viscosity", "Settling viscosity", "μ", "Pa·s", 1e-6, 1e3,
+           "μ of eq. (17); the default gives v_s ≈ 0.1 m/s for 1 mm grains.",
+           &P::settling_viscosity),
       integer("engine.reorder_every", "Reorder interval", "", "steps", 1, 1e6,
               "Steps between Z-order reorders of the particle arrays.", &P::reorder_every),
       real("engine.max_penetration_over_ds", "Penetration limit", "", "Δs", 0.0, 100.0,
@@ -127,6 +151,19 @@ std::string nearestParamKey(std::string_view key) {
   }
   return best;
 }
+
+double SimParams::particleMass() const {
+  const double h = support();
+  const Poly6 w(h);
+  const int K = int(std::ceil(h / spacing));
+  double sum = 0;
+  for (int c = -K; c <= K; ++c)
+    for (int b = -K; b <= K; ++b)
+      for (int a = -K; a <= K; ++a) sum += w(float(spacing * spacing * (a * a + b * b + c * c)));
+  return rest_density / sum;
+}
+
+double SimParams::particleVolume() const { return particleMass() / rest_density; }
 
 double getParam(const SimParams& p, const ParamInfo& info) {
   return info.dmember ? p.*info.dmember : double(p.*info.imember);

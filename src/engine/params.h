@@ -55,6 +55,29 @@ struct SimParams {
   /// μ_b, no-slip friction constant of eq. (8) [m³/s].
   double boundary_friction = 0.0;
 
+  // --- erosion and sediment (paper §4, model.md §3–6) ---
+  /// K_ε, erosion strength (Partheniades) [kg/(m²·s·Pa)].
+  double k_eps = 0.1;
+  /// τ_c, critical shear stress [Pa].
+  double tau_c = 3.0;
+  /// K, shear-stress constant of τ = K θⁿ [Pa·sⁿ].
+  double shear_k = 1.0;
+  /// n, flow behaviour index of τ = K θⁿ [-].
+  double shear_n = 0.5;
+  /// D, sediment diffusivity (kinematic, model.md's consistent form of eq. 19) [m²/s].
+  double diffusion = 0.1;
+  /// r_s, sediment grain radius [m].
+  double grain_radius = 1e-3;
+  /// ρ_s, sediment (soil) density [kg/m³].
+  double sediment_density = 2650.0;
+  /// C_max, maximum solid volume fraction of a fluid particle [-].
+  double c_max = 0.6;
+  /// e, Richardson–Zaki exponent of f(C) = 1 − (C/C_max)^e [-].
+  double rz_exponent = 4.65;
+  /// μ in eq. (17), "settling viscosity": Stokes' law with water's viscosity gives metres per
+  /// second for 1 mm grains, out of its range; the default gives v_s ≈ 0.1 m/s [Pa·s].
+  double settling_viscosity = 0.036;
+
   // --- bookkeeping ---
   /// Steps between reorders of the particle arrays along the Z-order curve [-].
   int reorder_every = 16;
@@ -62,7 +85,17 @@ struct SimParams {
   double max_penetration_over_ds = 0.5;
 
   double support() const { return support_over_spacing * spacing; }
-  double particleMass() const { return rest_density * spacing * spacing * spacing; }
+  /// m = ρ0 / Σ_lattice W_poly6: a particle resting on the cubic lattice of spacing Δs reads ρ0
+  /// exactly (ρ0Δs³ would read 1 % more at h = 2Δs; see docs/model.md) [kg].
+  double particleMass() const;
+  /// Volume a fluid particle stands for in the sediment budget, m/ρ0 (constant, so that the
+  /// budget does not breathe with the weakly compressible density) [m³].
+  double particleVolume() const;
+  /// |v_s| of eq. (17) for f(C) = 1 [m/s].
+  double settlingSpeed() const {
+    return 2.0 / 9.0 * grain_radius * grain_radius * (sediment_density - rest_density) /
+           settling_viscosity * gravity;
+  }
   EquationOfState equationOfState() const {
     return eos == 1 ? EquationOfState::kIdealGas : EquationOfState::kTait;
   }

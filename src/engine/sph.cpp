@@ -6,18 +6,6 @@
 
 namespace scour {
 
-namespace {
-// Σ W_poly6 over the cubic rest lattice of spacing Δs (self included) within support h.
-double latticeSum(const Poly6& w, double spacing, double h) {
-  int K = int(std::ceil(h / spacing));
-  double s = 0;
-  for (int c = -K; c <= K; ++c)
-    for (int b = -K; b <= K; ++b)
-      for (int a = -K; a <= K; ++a)
-        s += w(float(spacing * spacing * (a * a + b * b + c * c)));
-  return s;
-}
-}  // namespace
 
 SphConstants::SphConstants(const SimParams& p)
     : h(p.support()),
@@ -38,7 +26,7 @@ SphConstants::SphConstants(const SimParams& p)
       poly6(h),
       spiky(h),
       visc(h) {
-  mass = p.rest_density / latticeSum(poly6, p.spacing, h);
+  mass = p.particleMass();
   // The spiky gradient, like any kernel gradient, should satisfy Σ_j V_j (x_j − x_i) ⊗ ∇W_ij = I
   // on the rest lattice, so that a linear pressure field gives back its gradient. At h = 2Δs it
   // misses by ~15 %, and a still column then settles at 15 % more than hydrostatic pressure.

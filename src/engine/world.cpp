@@ -21,6 +21,9 @@ const char* passName(Pass p) {
     case Pass::kBoundaryParticles: return "boundary_particles";
     case Pass::kBoundaryNeighbors: return "boundary_neighbors";
     case Pass::kNoSlip: return "no_slip";
+    case Pass::kSediment: return "sediment";
+    case Pass::kErosion: return "erosion";
+    case Pass::kTerrain: return "terrain";
     case Pass::kInvariants: return "invariants";
     case Pass::kCount: break;
   }
@@ -37,6 +40,9 @@ Table1Group table1Group(Pass p) {
     case Pass::kNoSlip: return Table1Group::kSph;
     case Pass::kBoundaryParticles:
     case Pass::kBoundaryNeighbors: return Table1Group::kBoundary;
+    case Pass::kSediment:
+    case Pass::kErosion:
+    case Pass::kTerrain: return Table1Group::kErosion;
     default: return Table1Group::kOther;
   }
 }
@@ -60,6 +66,7 @@ void require(bool ok, const std::string& what) {
 World::World(WorldDesc d)
     : p_(resolve(d.params)),
       k_(p_),
+      sk_(p_),
       hf_(std::move(d.terrain)),
       dom_(d.domain),
       fx_(d.effects),
@@ -69,6 +76,11 @@ World::World(WorldDesc d)
   require(bad.empty(), bad);
   require(hf_.nx() >= 2 && hf_.nz() >= 2, "terrain: needs at least 2 × 2 vertices");
   require(hf_.dx() > 0 && hf_.dz() > 0, "terrain: cell size must be positive");
+  for (double h : hf_.heights()) require(std::isfinite(h), "terrain: heights must be finite");
+  hf0_ = hf_;
+  vertexArea_ = vertexAreas(hf_);
+  terrainReference_ = hf_.minHeight();
+  acc_.resize(hf_.triangleCount());
   for (size_t s = 0; s < d.sources.size(); ++s) {
     const Source& src = d.sources[s];
     std::string at = "sources[" + std::to_string(s) + "]";
@@ -86,6 +98,19 @@ World::World(WorldDesc d)
     double p0 = d.pressure.empty() ? 0.0 : d.pressure[i];
     require(std::isfinite(p0) && p0 >= 0, "pressure: must be finite and ≥ 0");
     f_.push(d.particles[i], Vec3f::Zero(), nextId_++, float(k_.densityFor(p0)));
+  }
+  require(d.concentration.empty() || d.concentration.size() == d.particles.size(),
+          "concentration: one value per particle expected");
+  for (size_t i = 0; i < d.concentration.size(); ++i) {
+    const double c = d.concentration[i];
+    require(std::isfinite(c) && c >= 0 && c <= p_.c_max, "concentration: must lie in [0, c_max]");
+    f_.sed[i] = c * sk_.volume;
+  }
+  initialSoil_ = soilBudget().total();
+  for (size_t i = 0; i < f_.size(); ++i) {
+    const double c = f_.sed[i] / sk_.volume;
+    inv_.c_min = i == 0 ? c : std::min(inv_.c_min, c);
+    inv_.c_max = i == 0 ? c : std::max(inv_.c_max, c);
   }
   searchNeighbors();
   computeAccelerations();
@@ -110,10 +135,17 @@ double World::chooseDt() const {
     a2 = std::max(a2, f_.a[i].squaredNorm());
   }
   const double h = k_.h;
-  double dt = std::min(p_.max_dt, p_.cfl * h / std::max(p_.sound_speed, std::sqrt(double(v2))));
-  if (a2 > 0) dt = std::min(dt, p_.force_cfl * std::sqrt(h / std::sqrt(double(a2))));
-  if (p_.viscosity > 0) dt = std::min(dt, 0.125 * h * h / p_.viscosity);
-  dt = std::min(dt, 0.5 / std::sqrt(p_.penalty_stiffness));
+  double dt = p_.max_dt;
+  if (fx_.fluid_motion) {
+    dt = std::min(dt, p_.cfl * h / std::max(p_.sound_speed, std::sqrt(double(v2))));
+    if (a2 > 0) dt = std::min(dt, p_.force_cfl * std::sqrt(h / std::sqrt(double(a2))));
+    if (p_.viscosity > 0) dt = std::min(dt, 0.125 * h * h / p_.viscosity);
+    dt = std::min(dt, 0.5 / std::sqrt(p_.penalty_stiffness));
+  }
+  // Explicit sediment transport: diffusion needs Δt ≤ h²/(8D) (model.md); the donor–acceptor
+  // settling moves at most a fraction λ of h per step.
+  if (fx_.diffusion && p_.diffusion > 0) dt = std::min(dt, 0.125 * h * h / p_.diffusion);
+  if ((fx_.settling || fx_.deposition) && sk_.vs0 > 0) dt = std::min(dt, p_.cfl * h / sk_.vs0);
   return dt;
 }
 
@@ -122,7 +154,7 @@ void World::searchNeighbors() {
     grid_.build(f_.x, float(k_.h));
     nbrs_.build(grid_, f_.x, f_.x, grid_.start(), grid_.sorted(), float(k_.h), true);
   });
-  if (!fx_.no_slip) return;
+  if (!needsBoundary()) return;
   timed(Pass::kBoundaryParticles, [&] {
     if (sampler_.updateActiveTiles(hf_, f_.x, k_.h)) sampler_.generate(hf_, b_);
   });
@@ -157,6 +189,7 @@ void World::removeParticles() {
       for (const Sink& s : sinks_) sunk = sunk || s.contains(x);
       bool out = open && (x.x() < hf_.x0() || x.x() > hf_.xMax() || x.z() < hf_.z0() ||
                           x.z() > hf_.zMax());
+      if (sunk || out) removedSediment_ += f_.sed[i];
       if (sunk) ++removedSinks_;
       else if (out) ++removedOutflow_;
       else keep.push_back(uint32_t(i));
@@ -199,6 +232,35 @@ void World::emit() {
   });
 }
 
+void World::sedimentWork() {
+  SedimentEffects sfx{fx_.settling, fx_.diffusion, fx_.deposition, fx_.erosion};
+  if (sfx.settling || sfx.diffusion || sfx.deposition) {
+    timed(Pass::kSediment, [&] { transferSediment(sk_, sfx, nbrs_, bnbrs_, b_, dt_, f_, acc_); });
+  }
+  if (sfx.erosion) timed(Pass::kErosion, [&] { erode(sk_, bnbrs_, b_, dt_, f_, acc_); });
+  if (sfx.erosion || sfx.deposition) {
+    timed(Pass::kTerrain, [&] {
+      std::vector<int> moved = applyTerrainChange(hf_, vertexArea_, acc_);
+      BoundarySampler::follow(hf_, moved, b_);
+    });
+  }
+}
+
+SoilBudget World::soilBudget() const {
+  SoilBudget s;
+  s.terrain = terrainVolume(hf_, vertexArea_, terrainReference_);
+  for (double v : f_.sed) s.suspended += v;
+  s.removed = removedSediment_;
+  s.initial = initialSoil_;
+  return s;
+}
+
+std::vector<double> World::heightChange() const {
+  std::vector<double> d(hf_.heights().size());
+  for (size_t i = 0; i < d.size(); ++i) d[i] = hf_.heights()[i] - hf0_.heights()[i];
+  return d;
+}
+
 long World::blockedSlots() const {
   long s = 0;
   for (const auto& e : emitters_) s += e.blocked;
@@ -209,36 +271,45 @@ StepStats World::step() {
   dt_ = chooseDt();
   const float half = float(0.5 * dt_), full = float(dt_);
   const size_t n0 = f_.size();
-  timed(Pass::kIntegrate, [&] {
+  if (fx_.fluid_motion) {
+    timed(Pass::kIntegrate, [&] {
 #pragma omp parallel for schedule(static)
-    for (size_t i = 0; i < n0; ++i) {
-      f_.v[i] += half * f_.a[i];  // kick: v(t + Δt/2)
-      f_.x[i] += full * f_.v[i];  // drift: x(t + Δt)
-    }
-  });
+      for (size_t i = 0; i < n0; ++i) {
+        f_.v[i] += half * f_.a[i];  // kick: v(t + Δt/2)
+        f_.x[i] += full * f_.v[i];  // drift: x(t + Δt)
+      }
+    });
+  }
   emit();  // before removal: the grid's indices are those of the last search
   removeParticles();
   ++step_;
   time_ += dt_;
-  if (p_.reorder_every > 0 && step_ % p_.reorder_every == 0) {
-    timed(Pass::kNeighborSearch, [&] {
-      grid_.build(f_.x, float(k_.h));
-      f_.gather(grid_.zOrder(f_.x));
+  // Frozen fluid (sediment-only scenes) keeps its neighbors unless particles come or go.
+  const bool moved = fx_.fluid_motion || f_.size() != n0 || !emitters_.empty() || !sinks_.empty();
+  if (moved) {
+    if (p_.reorder_every > 0 && step_ % p_.reorder_every == 0) {
+      timed(Pass::kNeighborSearch, [&] {
+        grid_.build(f_.x, float(k_.h));
+        f_.gather(grid_.zOrder(f_.x));
+      });
+    }
+    searchNeighbors();
+  }
+  const size_t n = f_.size();
+  if (fx_.fluid_motion) {
+    timed(Pass::kIntegrate, [&] {
+      // The force time's velocity, predicted from the half step: v̂ = v(t+Δt/2) + Δt/2 · a(t).
+      vhat_.resize(n);
+#pragma omp parallel for schedule(static)
+      for (size_t i = 0; i < n; ++i) vhat_[i] = f_.v[i] + half * f_.a[i];
+    });
+    computeAccelerations();
+    timed(Pass::kIntegrate, [&] {
+#pragma omp parallel for schedule(static)
+      for (size_t i = 0; i < n; ++i) f_.v[i] += half * f_.a[i];  // kick: v(t + Δt)
     });
   }
-  searchNeighbors();
-  const size_t n = f_.size();
-  timed(Pass::kIntegrate, [&] {
-    // The force time's velocity, predicted from the half step: v̂ = v(t+Δt/2) + Δt/2 · a(t).
-    vhat_.resize(n);
-#pragma omp parallel for schedule(static)
-    for (size_t i = 0; i < n; ++i) vhat_[i] = f_.v[i] + half * f_.a[i];
-  });
-  computeAccelerations();
-  timed(Pass::kIntegrate, [&] {
-#pragma omp parallel for schedule(static)
-    for (size_t i = 0; i < n; ++i) f_.v[i] += half * f_.a[i];  // kick: v(t + Δt)
-  });
+  sedimentWork();
   timed(Pass::kInvariants, [&] { checkInvariants(); });
   StepStats s;
   s.dt = dt_;
@@ -284,6 +355,13 @@ void World::checkInvariants() {
     if (tdeep > deepest || (tdeep == deepest && tat < deepestAt)) deepest = tdeep, deepestAt = tat;
   }
   inv_.max_penetration_over_ds = std::max(inv_.max_penetration_over_ds, std::max(deepest, 0.0));
+  long badC = -1;
+  for (size_t i = 0; i < n; ++i) {
+    const double c = f_.sed[i] / sk_.volume;
+    inv_.c_min = std::min(inv_.c_min, c);
+    inv_.c_max = std::max(inv_.c_max, c);
+    if (badC < 0 && (c < -1e-12 || c > p_.c_max * (1 + 1e-12))) badC = long(i);
+  }
   auto where = [&](long i) {
     std::ostringstream o;
     const Vec3f& x = f_.x[i];
@@ -297,6 +375,12 @@ void World::checkInvariants() {
     std::ostringstream o;
     o << where(badNan) << " has a non-finite state: velocity (" << v.x() << ", " << v.y() << ", "
       << v.z() << ")";
+    throw InvariantViolation(o.str());
+  }
+  if (badC >= 0) {
+    std::ostringstream o;
+    o << where(badC) << " carries sediment concentration C = " << f_.sed[badC] / sk_.volume
+      << " outside [0, " << p_.c_max << "]";
     throw InvariantViolation(o.str());
   }
   if (badOut >= 0) {
@@ -321,15 +405,17 @@ uint64_t World::stateHash() const {
   mix(&n, sizeof n);
   mix(f_.x.data(), n * sizeof(Vec3f));
   mix(f_.v.data(), n * sizeof(Vec3f));
+  mix(f_.sed.data(), n * sizeof(double));
   mix(hf_.heights().data(), hf_.heights().size() * sizeof(double));
   mix(&time_, sizeof time_);
   return h;
 }
 
 size_t World::memoryBytes() const {
-  size_t per = sizeof(Vec3f) * 4 + sizeof(float) * 2 + sizeof(uint32_t);  // x v a vhat rho p id
+  // x v a vhat, rho p scratch, id, sed
+  size_t per = sizeof(Vec3f) * 4 + sizeof(float) * 3 + sizeof(uint32_t) + sizeof(double);
   return f_.x.capacity() * per + grid_.bytes() + nbrs_.bytes() + bnbrs_.bytes() +
-         b_.x.capacity() * (sizeof(Vec3f) + sizeof(int) + sizeof(double)) +
+         b_.x.capacity() * (sizeof(Vec3f) + sizeof(int) + sizeof(double) + sizeof(Eigen::Vector2f)) +
          (bstart_.capacity() + bsorted_.capacity()) * sizeof(uint32_t);
 }
 

@@ -25,6 +25,7 @@
 #include "engine/heightfield.h"
 #include "engine/neighbors.h"
 #include "engine/params.h"
+#include "engine/sediment.h"
 #include "engine/sources.h"
 #include "engine/sph.h"
 
@@ -41,6 +42,9 @@ enum class Pass {
   kBoundaryParticles,
   kBoundaryNeighbors,
   kNoSlip,
+  kSediment,
+  kErosion,
+  kTerrain,
   kInvariants,
   kCount
 };
@@ -52,14 +56,28 @@ Table1Group table1Group(Pass p);
 
 /// Effects a scene calls for; a pass whose effect is off is not in the pass list.
 struct Effects {
+  bool fluid_motion = true;  ///< off: particles stay where they are (sediment-only scenes)
   bool surface_tension = false;
   bool no_slip = false;
+  bool settling = false;    ///< eqs. (16)–(17)
+  bool diffusion = false;   ///< eq. (19)
+  bool deposition = false;  ///< eq. (20)
+  bool erosion = false;     ///< eqs. (9)–(10)
+};
+
+/// The soil budget [m³]: terrain above the initial lowest height, sediment suspended in the
+/// fluid, sediment carried out by sinks and open walls.
+struct SoilBudget {
+  double terrain = 0, suspended = 0, removed = 0, initial = 0;
+  double total() const { return terrain + suspended + removed; }
+  double relativeError() const { return initial != 0 ? std::abs(total() - initial) / initial : 0; }
 };
 
 struct InvariantReport {
   long nan = 0;                          ///< non-finite values seen
   double max_penetration_over_ds = 0.0;  ///< deepest particle below the terrain, in Δs
   long escaped = 0;                      ///< particles found beyond a closed wall
+  double c_min = 0.0, c_max = 0.0;       ///< extreme sediment concentrations seen
 };
 
 class InvariantViolation : public std::runtime_error {
@@ -82,6 +100,8 @@ struct WorldDesc {
   /// Initial pressure of each particle [Pa] (e.g. hydrostatic); empty = 0. Sets the initial
   /// continuity density through the inverse equation of state.
   std::vector<float> pressure;
+  /// Initial sediment concentration C of each particle; empty = 0.
+  std::vector<double> concentration;
   std::vector<Source> sources;
   std::vector<Sink> sinks;
 };
@@ -112,6 +132,14 @@ class World {
   long emitted() const { return emittedTotal_; }
   long blockedSlots() const;
 
+  /// The soil budget now (the terrain part is summed over every vertex).
+  SoilBudget soilBudget() const;
+  /// Height change of every vertex since the start [m].
+  std::vector<double> heightChange() const;
+  const Heightfield& initialTerrain() const { return hf0_; }
+  /// Sediment concentration C of particle i.
+  double concentration(size_t i) const { return f_.sed[i] / sk_.volume; }
+
   /// FNV-1a over particle count, positions, velocities, heights and time.
   uint64_t stateHash() const;
   /// Bytes held by particle arrays, grid and neighbor lists.
@@ -126,10 +154,17 @@ class World {
   void removeParticles();
   void emit();
   void checkInvariants();
+  void sedimentWork();
+  bool needsBoundary() const { return fx_.no_slip || fx_.erosion || fx_.deposition; }
 
   SimParams p_;
   SphConstants k_;
-  Heightfield hf_;
+  SedimentConstants sk_;
+  Heightfield hf_, hf0_;
+  std::vector<double> vertexArea_;
+  double terrainReference_ = 0;
+  TerrainAccumulator acc_;
+  double removedSediment_ = 0, initialSoil_ = 0;
   Domain dom_;
   Effects fx_;
   Fluid f_;

@@ -12,6 +12,8 @@ const std::vector<PresetInfo>& presetList() {
       {"hydrostatic", "a tank of still water, for the hydrostatic pressure profile"},
       {"slope", "a block of water sliding down an inclined valley (no source)"},
       {"block", "a wide pool of water over a gently rolling heightfield (benchmark)"},
+      {"settling", "sediment-only: a frozen lattice of water, sediment settling from one top particle (Fig. 4)"},
+      {"diffusion", "sediment-only: a frozen lattice of water, sediment diffusing from the centre (Fig. 5)"},
   };
   return list;
 }
@@ -137,6 +139,28 @@ Scene block(double scale, long particles) {
   return s;
 }
 
+// A frozen lattice (the paper's Figures 4 and 5): fluid motion off, only the sediment passes run.
+Scene sedimentLattice(const std::string& name, int nx, int ny, int nz, bool settle) {
+  Scene s;
+  s.name = name;
+  s.description = settle ? presetList()[5].description : presetList()[6].description;
+  SimParams& p = s.desc.params;
+  p.spacing = 0.1;
+  p.max_dt = 0.01;
+  s.desc.effects.fluid_motion = false;
+  s.desc.effects.settling = settle;
+  s.desc.effects.diffusion = !settle;
+  const double ds = p.spacing;
+  s.desc.terrain = flat(nx * ds, nz * ds, ds);
+  s.terrain_kind = "flat";
+  fillBlock(s, {0, 0, 0}, {nx * ds, ny * ds, nz * ds});
+  s.desc.concentration.assign(s.desc.particles.size(), 0.0);
+  // The marked particle: top centre (settling) or centre (diffusion).
+  const int mi = nx / 2, mk = nz / 2, mj = settle ? ny - 1 : ny / 2;
+  s.desc.concentration[size_t(mk) * nx * ny + size_t(mj) * nx + mi] = settle ? 0.05 : 0.5;
+  return s;
+}
+
 }  // namespace
 
 Scene makePreset(const std::string& name, double scale, long particles) {
@@ -146,6 +170,8 @@ Scene makePreset(const std::string& name, double scale, long particles) {
   if (name == "slope") return slope(scale, false);
   if (name == "default") return slope(scale, true);
   if (name == "block") return block(scale, particles);
+  if (name == "settling") return sedimentLattice(name, 9, 40, 9, true);
+  if (name == "diffusion") return sedimentLattice(name, 21, 21, 21, false);
   std::string names;
   for (const auto& p : presetList()) names += std::string(names.empty() ? "" : ", ") + p.name;
   throw std::invalid_argument("unknown scene '" + name + "' (built-in scenes: " + names + ")");

@@ -1,0 +1,88 @@
+#pragma once
+// Erosion, sediment transport and deposition (paper §4, model.md §3–6).
+//
+// Each fluid particle carries a sediment volume s_i [m³]; its concentration is C_i = s_i / V with
+// V = m/ρ0 the particle's rest volume (constant, so the budget does not breathe with the weakly
+// compressible density). All exchanges are pairwise *volume* fluxes, evaluated by one function
+// from the same operands on both sides of a pair, so what one particle gives the other receives
+// to the bit, and the soil budget (terrain + suspended + removed) closes to rounding.
+//
+// One step of sediment work:
+//  1. transferSediment: donor–acceptor settling along v_s (eqs. 16–17, flux doubled per
+//     model.md), diffusion (model.md's consistent eq. 19) and deposition onto the boundary
+//     particles below (eq. 20). Two passes: the first sums each particle's raw outflow and inflow;
+//     the second applies every directed flux scaled by min(donor's factor, acceptor's factor),
+//     the factors chosen so no donor gives more than it holds and no acceptor passes C_max.
+//  2. erode: shear stress τ = K θⁿ, θ = |v_j| / l, Partheniades ε = K_ε(τ − τ_c) (eqs. 9–10),
+//     each pair's mass L_b² ε Δt taken from the boundary particle into the fluid particle, capped
+//     so that C_j ≤ C_max.
+//  3. applyTerrainChange: per-triangle volumes (eq. 21) to vertex heights (eq. 22) with slippage.
+// Fluid-side updates are parallel gathers; the per-triangle sums are accumulated serially in
+// particle order, so the result is the same at any thread count.
+
+#include <cstdint>
+#include <vector>
+
+#include "engine/boundary.h"
+#include "engine/fluid.h"
+#include "engine/heightfield.h"
+#include "engine/kernels.h"
+#include "engine/neighbors.h"
+#include "engine/params.h"
+
+namespace scour {
+
+struct SedimentEffects {
+  bool settling = false, diffusion = false, deposition = false, erosion = false;
+  bool any() const { return settling || diffusion || deposition || erosion; }
+};
+
+/// Constants of the sediment passes, from SimParams.
+struct SedimentConstants {
+  explicit SedimentConstants(const SimParams& p);
+  double volume;      ///< V = m/ρ0 [m³]
+  double c_max, rz, vs0, diffusion, k_eps, tau_c, shear_k, shear_n, rho_s;
+  double min_distance;  ///< l is clamped below at this [m]
+  CubicSpline spline;
+  /// Richardson–Zaki f(C) = 1 − (C/C_max)^e, 0 for C ≥ C_max.
+  double hindrance(double c) const;
+};
+
+/// Volume exchanged per triangle this step: + deposited, − eroded [m³].
+struct TerrainAccumulator {
+  std::vector<double> volume;   ///< per triangle
+  std::vector<int> touched;     ///< triangles with a non-zero entry, in first-touch order
+  void resize(int triangles) { volume.assign(size_t(triangles), 0.0); }
+  void add(int tri, double v) {
+    if (volume[size_t(tri)] == 0.0) touched.push_back(tri);
+    volume[size_t(tri)] += v;
+  }
+};
+
+/// Steps 1 (fluid–fluid and fluid–boundary transfer) of the sediment work; adds deposits to acc.
+void transferSediment(const SedimentConstants& k, const SedimentEffects& fx,
+                      const NeighborLists& nbrs, const NeighborLists& bnbrs,
+                      const BoundaryParticles& b, double dt, Fluid& f, TerrainAccumulator& acc);
+
+/// Step 2: erosion by shear stress; subtracts eroded volumes from acc.
+void erode(const SedimentConstants& k, const NeighborLists& bnbrs, const BoundaryParticles& b,
+           double dt, Fluid& f, TerrainAccumulator& acc);
+
+/// Per-vertex area weights of the soil volume: A_v = Σ_{t ∋ v} A_t / 3 (projected areas), so that
+/// Σ_v h_v A_v is exactly the volume under the piecewise-linear surface.
+std::vector<double> vertexAreas(const Heightfield& hf);
+
+/// Soil volume above `reference`: Σ_v (h_v − reference) A_v, summed in vertex order.
+double terrainVolume(const Heightfield& hf, const std::vector<double>& areas, double reference);
+
+/// Adds volume V to triangle `tri` (V < 0 removes): deposition fills the lowest vertex first until
+/// level with the next, then the two, then raises all three; erosion cuts the highest first.
+/// Σ Δh_v A_v = V to rounding.
+void depositOnTriangle(Heightfield& hf, const std::vector<double>& areas, int tri, double volume);
+
+/// Step 3: applies and clears the accumulator, in ascending triangle order. Returns the triangles
+/// whose surface moved (those sharing a changed vertex), sorted.
+std::vector<int> applyTerrainChange(Heightfield& hf, const std::vector<double>& areas,
+                                    TerrainAccumulator& acc);
+
+}  // namespace scour
