@@ -126,7 +126,16 @@ int runScene(const RunOptions& o) {
   const InvariantReport& inv = world->invariants();
   summary["invariants"] = {{"nan", inv.nan},
                            {"max_penetration_over_ds", inv.max_penetration_over_ds},
-                           {"escaped", inv.escaped}};
+                           {"escaped", inv.escaped},
+                           {"c_min", inv.c_min},
+                           {"c_max", inv.c_max}};
+  const SoilBudget soil = world->soilBudget();
+  summary["soil"] = {{"terrain_m3", soil.terrain},
+                     {"suspended_m3", soil.suspended},
+                     {"removed_m3", soil.removed},
+                     {"initial_m3", soil.initial},
+                     {"relative_error", soil.relativeError()},
+                     {"reference_height_m", world->initialTerrain().minHeight()}};
   summary["flow"] = {{"emitted", world->emitted()},
                      {"blocked_slots", world->blockedSlots()},
                      {"removed_by_sinks", world->removedBySinks()},

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include <Eigen/Geometry>
+
 namespace scour {
 
 BoundarySampler::BoundarySampler(const Heightfield& hf, double spacing)
@@ -49,10 +51,12 @@ void BoundarySampler::generate(const Heightfield& hf, BoundaryParticles& out) co
 void BoundarySampler::follow(const Heightfield& hf, const std::vector<int>& triangles,
                              BoundaryParticles& b) {
   if (triangles.empty()) return;
+  std::vector<uint8_t> moved(size_t(hf.triangleCount()), 0);
+  for (int t : triangles) moved[size_t(t)] = 1;
   const size_t n = b.size();
 #pragma omp parallel for schedule(static)
   for (size_t k = 0; k < n; ++k) {
-    if (!std::binary_search(triangles.begin(), triangles.end(), b.triangle[k])) continue;
+    if (!moved[size_t(b.triangle[k])]) continue;
     auto c = hf.triangleCorners(b.triangle[k]);
     const double u = b.bary[k].x(), w = b.bary[k].y();
     b.x[k].y() = float(c[0].y() + u * (c[1].y() - c[0].y()) + w * (c[2].y() - c[0].y()));
@@ -63,8 +67,9 @@ void BoundarySampler::sampleTriangle(const Heightfield& hf, int tri, double spac
                                      BoundaryParticles& out) {
   auto c = hf.triangleCorners(tri);
   const Eigen::Vector3d ab = c[1] - c[0], ac = c[2] - c[0];
-  double longest = std::max({ab.norm(), ac.norm(), (c[2] - c[1]).norm()});
-  int n = std::max(1, int(std::ceil(longest / spacing - 1e-9)));
+  // n² particles for a surface area A: about one per Δs², as a lattice of spacing Δs would have.
+  const double area3d = 0.5 * ab.cross(ac).norm();
+  const int n = std::max(1, int(std::lround(std::sqrt(area3d) / spacing)));
   // Projected (x–z) area: the heightfield's cell area is what the terrain volume is made of.
   double projected = 0.5 * std::abs(ab.x() * ac.z() - ab.z() * ac.x());
   double each = projected / (double(n) * n);

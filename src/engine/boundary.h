@@ -1,6 +1,6 @@
 #pragma once
 // Boundary particles on the terrain (paper §3.2). Each heightfield triangle is covered by n² equal
-// sub-triangles (n = ⌈longest edge / Δs⌉) walked row by row like a scanline; one boundary particle
+// sub-triangles (n = round(√area / Δs), at least 1) walked row by row like a scanline; one boundary particle
 // sits at each sub-triangle's centroid and stands for its area, so the particles of a triangle
 // carry exactly its area (L_b² summed = triangle area), which the erosion budget relies on.
 //

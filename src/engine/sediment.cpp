@@ -4,6 +4,8 @@
 #include <array>
 #include <cmath>
 
+#include <omp.h>
+
 namespace scour {
 
 SedimentConstants::SedimentConstants(const SimParams& p)
@@ -18,7 +20,19 @@ SedimentConstants::SedimentConstants(const SimParams& p)
       shear_n(p.shear_n),
       rho_s(p.sediment_density),
       min_distance(0.1 * p.support()),
-      spline(p.support()) {}
+      spline(p.support()) {
+  hindranceTable.resize(4097);
+  for (size_t t = 0; t < hindranceTable.size(); ++t)
+    hindranceTable[t] = float(hindrance(c_max * double(t) / 4096.0));
+}
+
+float SedimentConstants::hindranceFast(double c) const {
+  const double u = std::max(c, 0.0) / c_max * 4096.0;
+  if (u >= 4096.0) return 0.0f;
+  const size_t i = size_t(u);
+  const float w = float(u - double(i));
+  return hindranceTable[i] + w * (hindranceTable[i + 1] - hindranceTable[i]);
+}
 
 double SedimentConstants::hindrance(double c) const {
   if (c >= c_max) return 0.0;
@@ -27,105 +41,144 @@ double SedimentConstants::hindrance(double c) const {
 
 namespace {
 
-// The raw volume flux [m³/s] from donor d to acceptor a, for a pair at distance r whose vertical
-// separation is dy = y_d − y_a. Both particles of a pair call it with the same arguments, so the
-// two sides agree to the bit.
+// The geometry of a pair, computed once per pair and pass from operands both particles see
+// identically (|dy| and r), so the two sides of a pair agree to the bit. Float: the fluxes need
+// no more, and the budget stays exact because both sides use the same float values (the sums are
+// double).
+struct PairGeometry {
+  float settle = 0;   // 2 V² |v_s| (|dy|/r) |F(r)|: eq. (16) doubled, without C and f(C)
+  float diffuse = 0;  // 2 D V² |F(r)| / r: model.md's eq. (19), without the C difference
+};
+
 struct PairFlux {
-  const SedimentConstants& k;
-  bool settle, diffuse;
-  double operator()(double cd, double ca, double dy, double r) const {
-    if (r <= 0.0) return 0.0;
-    const double absF = -k.spline.F(r);
-    double flux = 0.0;
-    // Eq. (16), doubled (model.md): the donor above gives along v_s = −|v_s| ŷ at the acceptor's
-    // hindered speed; |v_s · r̂| = |v_s| dy / r.
-    if (settle && dy > 0.0 && cd > 0.0)
-      flux += 2.0 * k.volume * k.volume * cd * k.vs0 * k.hindrance(ca) * (dy / r) * absF;
-    // Model.md's eq. (19): V_a V_d 2D (C_d − C_a) |F| / r, from the richer to the poorer.
-    if (diffuse && cd > ca) flux += k.volume * k.volume * 2.0 * k.diffusion * (cd - ca) * absF / r;
-    return flux;
+  float kSettle, kDiffuse, invHm, fCoef;
+  PairFlux(const SedimentConstants& k, bool settle, bool diffuse)
+      : kSettle(settle ? float(2.0 * k.volume * k.volume * k.vs0) : 0.0f),
+        kDiffuse(diffuse ? float(2.0 * k.diffusion * k.volume * k.volume) : 0.0f),
+        invHm(float(1.0 / k.spline.hm)),
+        fCoef(float(k.spline.sigma / k.spline.hm)) {}
+  // |F(r)| of the cubic spline (support 2 h_M = h).
+  float absF(float r) const {
+    const float q = r * invHm;
+    if (q >= 2.0f) return 0.0f;
+    if (q < 1.0f) return fCoef * (3.0f * q - 2.25f * q * q);
+    const float t = 2.0f - q;
+    return fCoef * 0.75f * t * t;
+  }
+  /// |F(r)| / r, 0 for coincident particles.
+  float ratio(float r) const { return r > 0.0f ? absF(r) / r : 0.0f; }
+  PairGeometry geometry(float absDy, float fr) const { return {kSettle * absDy * fr, kDiffuse * fr}; }
+  // Volume flux [m³/s] from donor d to acceptor a; `below` says a lies below d (dy > 0), fa is
+  // the acceptor's hindrance f(C_a) (eq. 17: C taken at the acceptor).
+  static double flux(const PairGeometry& g, float cd, float ca, float fa, bool below) {
+    float v = below ? g.settle * cd * fa : 0.0f;
+    if (cd > ca) v += g.diffuse * (cd - ca);
+    return double(v);
   }
 };
 
-// Eq. (20) with the doubled eq. (16) flux: donor fluid particle above a boundary particle.
+// Eq. (20) with the doubled eq. (16) flux: donor fluid particle above a boundary particle (which
+// holds no sediment, f = 1).
 double depositFlux(const SedimentConstants& k, double cd, double dy, double r) {
   if (r <= 0.0 || dy <= 0.0 || cd <= 0.0) return 0.0;
-  return 2.0 * k.volume * k.volume * cd * k.vs0 * k.hindrance(0.0) * (dy / r) * (-k.spline.F(r));
+  return 2.0 * k.volume * k.volume * cd * k.vs0 * (dy / r) * (-k.spline.F(r));
+}
+
+// Per-thread lists of (triangle, volume) for contiguous particle blocks; replayed in thread order
+// they are in particle order, whatever the thread count.
+using TriangleVolumes = std::vector<std::vector<std::pair<int, double>>>;
+
+void replay(const TriangleVolumes& lists, TerrainAccumulator& acc) {
+  for (const auto& l : lists)
+    for (auto [tri, v] : l) acc.add(tri, v);
 }
 
 }  // namespace
 
 void transferSediment(const SedimentConstants& k, const SedimentEffects& fx,
                       const NeighborLists& nbrs, const NeighborLists& bnbrs,
-                      const BoundaryParticles& b, double dt, Fluid& f, TerrainAccumulator& acc) {
+                      const BoundaryParticles& b, double dt, Fluid& f, TerrainAccumulator& acc,
+                      SedimentWorkspace& ws) {
   const size_t n = f.size();
   const double V = k.volume, room = k.c_max * V;
-  const PairFlux pair{k, fx.settling, fx.diffusion};
+  const PairFlux pair(k, fx.settling, fx.diffusion);
   const bool deposit = fx.deposition && bnbrs.size() == n;
-  std::vector<double> outScale(n, 1.0), inScale(n, 1.0), delta(n, 0.0);
-
-  // Pass 1: each particle's raw outflow (to fluid and to the terrain) and inflow over Δt.
+  std::vector<float>& conc = ws.conc;
+  std::vector<float>& hind = ws.hind;
+  std::vector<float>& fr = ws.pairGeometry;  // |F(r)|/r of each pair, kept for a second pass
+  std::vector<SedimentWorkspace::Scales>& scale = ws.scale;
+  std::vector<double>& delta = ws.delta;
+  conc.resize(n);
+  hind.resize(n);
+  scale.assign(n, {});
+  delta.assign(n, 0.0);
+  ws.pairOffset.resize(n + 1);
+  ws.pairOffset[0] = 0;
+  for (size_t i = 0; i < n; ++i) ws.pairOffset[i + 1] = ws.pairOffset[i] + nbrs.count(i);
+  fr.resize(ws.pairOffset[n]);
 #pragma omp parallel for schedule(static)
   for (size_t i = 0; i < n; ++i) {
-    const double ci = f.sed[i] / V;
-    double out = 0.0, in = 0.0;
-    const uint32_t* js = nbrs.begin(i);
-    for (uint32_t c = 0; c < nbrs.count(i); ++c) {
-      const uint32_t j = js[c];
-      const double cj = f.sed[j] / V;
-      if (ci == 0.0 && cj == 0.0) continue;
-      const double dy = double(f.x[i].y()) - double(f.x[j].y());
-      const double r = double((f.x[i] - f.x[j]).norm());
-      out += pair(ci, cj, dy, r);
-      in += pair(cj, ci, -dy, r);
-    }
-    if (deposit && ci > 0.0) {
-      forEachNeighbor(bnbrs, f.x, b.x, i, [&](uint32_t bj, const Vec3f& xib, float r) {
-        (void)bj;
-        out += depositFlux(k, ci, double(xib.y()), double(r));
-      });
-    }
-    out *= dt;
-    in *= dt;
-    if (out > f.sed[i]) outScale[i] = f.sed[i] / out;
-    const double space = std::max(room - f.sed[i], 0.0);
-    if (in > space) inScale[i] = space / in;
+    conc[i] = float(f.sed[i] / V);
+    hind[i] = k.hindranceFast(f.sed[i] / V);
   }
 
-  // Pass 2: apply each directed flux scaled by min(donor's out-scale, acceptor's in-scale).
-#pragma omp parallel for schedule(static)
-  for (size_t i = 0; i < n; ++i) {
-    const double ci = f.sed[i] / V;
-    double d = 0.0;
-    const uint32_t* js = nbrs.begin(i);
-    for (uint32_t c = 0; c < nbrs.count(i); ++c) {
-      const uint32_t j = js[c];
-      const double cj = f.sed[j] / V;
-      if (ci == 0.0 && cj == 0.0) continue;
-      const double dy = double(f.x[i].y()) - double(f.x[j].y());
-      const double r = double((f.x[i] - f.x[j]).norm());
-      d += pair(cj, ci, -dy, r) * dt * std::min(outScale[j], inScale[i]);
-      d -= pair(ci, cj, dy, r) * dt * std::min(outScale[i], inScale[j]);
+  // One exchange pass over all pairs. Unscaled (every factor 1), it also sums each particle's
+  // outflow and inflow over Δt; those give the factors that keep every donor from giving more
+  // than it holds and every acceptor from passing C_max. Only when some factor is below 1 (rare:
+  // a nearly empty donor or a nearly saturated acceptor) does the scaled pass run again; the
+  // unscaled pass then equals it to the bit, so the result does not depend on which ran.
+  TriangleVolumes deposits;
+  bool limited = false;
+  auto exchange = [&](bool scaled) {
+#pragma omp parallel reduction(|| : limited)
+    {
+      const int threads = omp_get_num_threads(), t = omp_get_thread_num();
+#pragma omp single
+      deposits.assign(size_t(threads), {});
+      auto& mine = deposits[size_t(t)];
+      const size_t lo = blockBegin(n, size_t(threads), size_t(t));
+      const size_t hi = blockBegin(n, size_t(threads), size_t(t) + 1);
+      for (size_t i = lo; i < hi; ++i) {
+        const float ci = conc[i];
+        double d = 0.0, out = 0.0, in = 0.0;
+        const uint32_t* js = nbrs.begin(i);
+        float* fri = fr.data() + ws.pairOffset[i];
+        for (uint32_t c = 0; c < nbrs.count(i); ++c) {
+          const uint32_t j = js[c];
+          const float cj = conc[j];
+          if (ci == 0.0f && cj == 0.0f) continue;
+          const float dy = f.x[i].y() - f.x[j].y();
+          if (!scaled) fri[c] = pair.ratio((f.x[i] - f.x[j]).norm());
+          const PairGeometry g = pair.geometry(std::abs(dy), fri[c]);
+          const double gain = PairFlux::flux(g, cj, ci, hind[i], dy < 0.0) * dt;
+          const double loss = PairFlux::flux(g, ci, cj, hind[j], dy > 0.0) * dt;
+          // Unscaled, the factors are being written by other threads: read none of them.
+          d += scaled ? gain * std::min(scale[j].out, scale[i].in) : gain;
+          d -= scaled ? loss * std::min(scale[i].out, scale[j].in) : loss;
+          in += gain;
+          out += loss;
+        }
+        if (deposit && ci > 0.0f) {
+          forEachNeighbor(bnbrs, f.x, b.x, i, [&](uint32_t bj, const Vec3f& xib, float r) {
+            const double v = depositFlux(k, f.sed[i] / V, double(xib.y()), double(r)) * dt;
+            if (v <= 0.0) return;
+            const double given = scaled ? v * scale[i].out : v;
+            d -= given;
+            out += v;
+            mine.emplace_back(b.triangle[bj], given);
+          });
+        }
+        delta[i] = d;
+        if (scaled) continue;
+        if (out > f.sed[i]) scale[i].out = f.sed[i] / out, limited = true;
+        const double space = std::max(room - f.sed[i], 0.0);
+        if (in > space) scale[i].in = space / in, limited = true;
+      }
     }
-    if (deposit && ci > 0.0) {
-      forEachNeighbor(bnbrs, f.x, b.x, i, [&](uint32_t, const Vec3f& xib, float r) {
-        d -= depositFlux(k, ci, double(xib.y()), double(r)) * dt * outScale[i];
-      });
-    }
-    delta[i] = d;
-  }
-
-  // The terrain's side of the deposits, in particle order (deterministic).
-  if (deposit) {
-    for (size_t i = 0; i < n; ++i) {
-      const double ci = f.sed[i] / V;
-      if (ci <= 0.0) continue;
-      forEachNeighbor(bnbrs, f.x, b.x, i, [&](uint32_t bj, const Vec3f& xib, float r) {
-        double v = depositFlux(k, ci, double(xib.y()), double(r)) * dt * outScale[i];
-        if (v > 0.0) acc.add(b.triangle[bj], v);
-      });
-    }
-  }
+  };
+  exchange(false);
+  if (limited) exchange(true);
+  replay(deposits, acc);
 #pragma omp parallel for schedule(static)
   for (size_t i = 0; i < n; ++i) f.sed[i] = std::clamp(f.sed[i] + delta[i], 0.0, room);
 }
@@ -134,39 +187,47 @@ void erode(const SedimentConstants& k, const NeighborLists& bnbrs, const Boundar
            double dt, Fluid& f, TerrainAccumulator& acc) {
   const size_t n = f.size();
   const double room = k.c_max * k.volume;
-  std::vector<double> scale(n, 0.0);
+  const bool sqrtLaw = k.shear_n == 0.5;
   auto pairVolume = [&](double speed, double l, double area) {
     // Eqs. (9)–(10): θ = v_rel / l, τ = K θⁿ, ε = K_ε (τ − τ_c) for τ > τ_c; mass L_b² ε Δt.
     const double theta = speed / std::max(l, k.min_distance);
-    const double tau = k.shear_k * std::pow(theta, k.shear_n);
+    const double tau = k.shear_k * (sqrtLaw ? std::sqrt(theta) : std::pow(theta, k.shear_n));
     if (tau <= k.tau_c) return 0.0;
     return area * k.k_eps * (tau - k.tau_c) * dt / k.rho_s;
   };
-#pragma omp parallel for schedule(static)
-  for (size_t i = 0; i < n; ++i) {
-    if (bnbrs.count(i) == 0) continue;
-    const double speed = double(f.v[i].norm());
-    double total = 0.0;
-    forEachNeighbor(bnbrs, f.x, b.x, i, [&](uint32_t bj, const Vec3f&, float r) {
-      total += pairVolume(speed, double(r), b.area[bj]);
-    });
-    if (total <= 0.0) continue;
-    const double space = std::max(room - f.sed[i], 0.0);
-    scale[i] = total > space ? space / total : 1.0;  // model.md: C_j ≤ C_max
+  TriangleVolumes eroded;
+#pragma omp parallel
+  {
+    const int threads = omp_get_num_threads(), t = omp_get_thread_num();
+#pragma omp single
+    eroded.resize(size_t(threads));
+    auto& mine = eroded[size_t(t)];
+    const size_t lo = blockBegin(n, size_t(threads), size_t(t));
+    const size_t hi = blockBegin(n, size_t(threads), size_t(t) + 1);
+    for (size_t i = lo; i < hi; ++i) {
+      if (bnbrs.count(i) == 0) continue;
+      const double speed = double(f.v[i].norm());
+      const size_t first = mine.size();
+      double total = 0.0;
+      forEachNeighbor(bnbrs, f.x, b.x, i, [&](uint32_t bj, const Vec3f&, float r) {
+        const double v = pairVolume(speed, double(r), b.area[bj]);
+        if (v <= 0.0) return;
+        mine.emplace_back(b.triangle[bj], -v);
+        total += v;
+      });
+      if (total <= 0.0) continue;
+      // Model.md: C_j ≤ C_max. The particle gains exactly the sum the terrain loses.
+      const double space = std::max(room - f.sed[i], 0.0);
+      const double scale = total > space ? space / total : 1.0;
+      double gained = 0.0;
+      for (size_t e = first; e < mine.size(); ++e) {
+        mine[e].second *= scale;
+        gained -= mine[e].second;
+      }
+      f.sed[i] += gained;
+    }
   }
-  // Both sides in particle order: the fluid particle gains exactly the sum the terrain loses.
-  for (size_t i = 0; i < n; ++i) {
-    if (scale[i] == 0.0) continue;
-    const double speed = double(f.v[i].norm());
-    double gained = 0.0;
-    forEachNeighbor(bnbrs, f.x, b.x, i, [&](uint32_t bj, const Vec3f&, float r) {
-      double v = pairVolume(speed, double(r), b.area[bj]) * scale[i];
-      if (v <= 0.0) return;
-      acc.add(b.triangle[bj], -v);
-      gained += v;
-    });
-    f.sed[i] += gained;
-  }
+  replay(eroded, acc);
 }
 
 std::vector<double> vertexAreas(const Heightfield& hf) {

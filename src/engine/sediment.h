@@ -10,9 +10,11 @@
 // One step of sediment work:
 //  1. transferSediment: donor–acceptor settling along v_s (eqs. 16–17, flux doubled per
 //     model.md), diffusion (model.md's consistent eq. 19) and deposition onto the boundary
-//     particles below (eq. 20). Two passes: the first sums each particle's raw outflow and inflow;
-//     the second applies every directed flux scaled by min(donor's factor, acceptor's factor),
-//     the factors chosen so no donor gives more than it holds and no acceptor passes C_max.
+//     particles below (eq. 20). The paper's two steps: sum each particle's raw outflow and
+//     inflow, then apply every directed flux scaled by min(donor's factor, acceptor's factor),
+//     the factors chosen so no donor gives more than it holds and no acceptor passes C_max. The
+//     first pass applies the fluxes unscaled as it sums, so the second runs only when a factor
+//     is below 1.
 //  2. erode: shear stress τ = K θⁿ, θ = |v_j| / l, Partheniades ε = K_ε(τ − τ_c) (eqs. 9–10),
 //     each pair's mass L_b² ε Δt taken from the boundary particle into the fluid particle, capped
 //     so that C_j ≤ C_max.
@@ -46,6 +48,9 @@ struct SedimentConstants {
   CubicSpline spline;
   /// Richardson–Zaki f(C) = 1 − (C/C_max)^e, 0 for C ≥ C_max.
   double hindrance(double c) const;
+  /// The same from a table (linear interpolation, error < 1e-6): one per particle and step.
+  float hindranceFast(double c) const;
+  std::vector<float> hindranceTable;
 };
 
 /// Volume exchanged per triangle this step: + deposited, − eroded [m³].
@@ -59,10 +64,22 @@ struct TerrainAccumulator {
   }
 };
 
-/// Steps 1 (fluid–fluid and fluid–boundary transfer) of the sediment work; adds deposits to acc.
+/// Per-step scratch of transferSediment, kept between steps so its memory is reused.
+struct SedimentWorkspace {
+  struct Scales {
+    double out = 1, in = 1;  ///< the donor's and the acceptor's factor
+  };
+  std::vector<float> conc, hind, pairGeometry;
+  std::vector<Scales> scale;
+  std::vector<double> delta;
+  std::vector<size_t> pairOffset;
+};
+
+/// Step 1 (fluid–fluid and fluid–boundary transfer) of the sediment work; adds deposits to acc.
 void transferSediment(const SedimentConstants& k, const SedimentEffects& fx,
                       const NeighborLists& nbrs, const NeighborLists& bnbrs,
-                      const BoundaryParticles& b, double dt, Fluid& f, TerrainAccumulator& acc);
+                      const BoundaryParticles& b, double dt, Fluid& f, TerrainAccumulator& acc,
+                      SedimentWorkspace& ws);
 
 /// Step 2: erosion by shear stress; subtracts eroded volumes from acc.
 void erode(const SedimentConstants& k, const NeighborLists& bnbrs, const BoundaryParticles& b,

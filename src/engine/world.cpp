@@ -235,7 +235,9 @@ void World::emit() {
 void World::sedimentWork() {
   SedimentEffects sfx{fx_.settling, fx_.diffusion, fx_.deposition, fx_.erosion};
   if (sfx.settling || sfx.diffusion || sfx.deposition) {
-    timed(Pass::kSediment, [&] { transferSediment(sk_, sfx, nbrs_, bnbrs_, b_, dt_, f_, acc_); });
+    timed(Pass::kSediment, [&] {
+      transferSediment(sk_, sfx, nbrs_, bnbrs_, b_, dt_, f_, acc_, sedimentWork_);
+    });
   }
   if (sfx.erosion) timed(Pass::kErosion, [&] { erode(sk_, bnbrs_, b_, dt_, f_, acc_); });
   if (sfx.erosion || sfx.deposition) {

@@ -164,6 +164,7 @@ class World {
   std::vector<double> vertexArea_;
   double terrainReference_ = 0;
   TerrainAccumulator acc_;
+  SedimentWorkspace sedimentWork_;
   double removedSediment_ = 0, initialSoil_ = 0;
   Domain dom_;
   Effects fx_;

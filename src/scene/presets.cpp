@@ -108,6 +108,15 @@ Scene slope(double scale, bool withSource) {
     src.direction = {1, -0.3, 0};
     src.rate = 0.002;
     s.desc.sources.push_back(src);
+    // The river: it erodes, carries, settles and deposits; a sink takes the water (and what it
+    // carries) out at the lower end.
+    Effects& e = s.desc.effects;
+    e.erosion = e.settling = e.diffusion = e.deposition = true;
+    p.diffusion = 0.01;  // strongly mixed would be 0.1 (paper); this keeps Δt at the SPH limit
+    Sink sink;
+    sink.lo = {lx - 0.15, -1.0, -1.0};
+    sink.hi = {lx + 1.0, 2.0, 2.0};
+    s.desc.sinks.push_back(sink);
   }
   return s;
 }

@@ -44,7 +44,11 @@ json sceneToJson(const Scene& s) {
                   {"height_min", hf.minHeight()},
                   {"height_max", hf.maxHeight()}};
   j["domain"] = {{"walls", d.domain.walls}};
-  j["effects"] = {{"surface_tension", d.effects.surface_tension}, {"no_slip", d.effects.no_slip}};
+  const Effects& e = d.effects;
+  j["effects"] = {{"fluid_motion", e.fluid_motion}, {"surface_tension", e.surface_tension},
+                  {"no_slip", e.no_slip},           {"settling", e.settling},
+                  {"diffusion", e.diffusion},       {"deposition", e.deposition},
+                  {"erosion", e.erosion}};
   json blocks = json::array();
   for (const auto& [lo, hi] : s.water_blocks) blocks.push_back({{"min", vec(lo)}, {"max", vec(hi)}});
   j["water"] = {{"blocks", blocks}, {"particles", d.particles.size()}};

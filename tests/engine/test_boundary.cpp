@@ -4,6 +4,8 @@
 #include <catch2/catch.hpp>
 #include <random>
 
+#include <Eigen/Geometry>
+
 #include "engine/boundary.h"
 #include "scene/presets.h"
 
@@ -51,8 +53,8 @@ TEST_CASE("boundary particles cover each triangle with its exact area", "[bounda
       double sum = 0;
       for (double a : b.area) sum += a;
       REQUIRE(sum == Approx(projected).epsilon(1e-12));
-      double longest = std::max({(c[1] - c[0]).norm(), (c[2] - c[0]).norm(), (c[2] - c[1]).norm()});
-      int n = std::max(1, int(std::ceil(longest / spacing - 1e-9)));
+      double area3d = 0.5 * (c[1] - c[0]).cross(c[2] - c[0]).norm();
+      int n = std::max(1, int(std::lround(std::sqrt(area3d) / spacing)));
       REQUIRE(b.size() == size_t(n) * n);
       for (size_t k = 0; k < b.size(); ++k) {
         REQUIRE(b.triangle[k] == tri);
@@ -74,7 +76,7 @@ TEST_CASE("boundary particles exist only for tiles near water", "[boundary]") {
   CHECK(sampler.activeTiles() == std::vector<int>{0});
   BoundaryParticles b;
   sampler.generate(hf, b);
-  CHECK(b.size() == size_t(8 * 8 * 2 * 9));  // 128 triangles, n = ⌈diagonal 0.141/0.05⌉ = 3
+  CHECK(b.size() == size_t(8 * 8 * 2 * 1));  // 128 triangles of 0.005 m²: n = round(0.07/0.05) = 1
   CHECK_FALSE(sampler.updateActiveTiles(hf, fluid, 0.1));  // unchanged set
   fluid.push_back(Vec3f(0.79f, 0.0f, 0.2f));  // within reach of tile 1 (x from 0.8)
   REQUIRE(sampler.updateActiveTiles(hf, fluid, 0.1));
