@@ -95,13 +95,14 @@ int runScene(const RunOptions& o) {
 
   auto start = std::chrono::steady_clock::now();
   auto lastReport = start;
-  if (o.particlesEvery > 0) writeParticlesPly(dir / plyName(0), world->fluid(), 0.0);
+  if (o.particlesEvery > 0) writeParticlesPly(dir / plyName(0), world->fluid(), world->params().particleVolume(), 0.0);
   std::string failure;
   try {
     while (o.steps > 0 ? world->steps() < o.steps : world->time() < o.time - 1e-12) {
       world->step();
       if (o.particlesEvery > 0 && world->steps() % o.particlesEvery == 0)
-        writeParticlesPly(dir / plyName(world->steps()), world->fluid(), world->time());
+        writeParticlesPly(dir / plyName(world->steps()), world->fluid(),
+                          world->params().particleVolume(), world->time());
       auto now = std::chrono::steady_clock::now();
       if (now - lastReport > std::chrono::seconds(5)) {
         lastReport = now;
@@ -144,6 +145,21 @@ int runScene(const RunOptions& o) {
   hash << std::hex << std::setw(16) << std::setfill('0') << world->stateHash();
   summary["state_hash"] = hash.str();
   summary["scene"] = sceneToJson(scene);
+  // Terrain exports: heights now, and the change since the start.
+  auto [lo, hi] = writeHeightPng16(dir / "height.png", world->terrain());
+  writeHeightRaw(dir / "height.r32", world->terrain());
+  const double changeScale = writeErosionPng(dir / "erosion.png", world->terrain(), world->heightChange());
+  const Heightfield& hf = world->terrain();
+  summary["exports"] = {
+      {"height_png",
+       {{"file", "height.png"}, {"min_m", lo}, {"max_m", hi},
+        {"mapping", "h = min_m + v / 65535 * (max_m - min_m); row k is z = z0 + k dz, column i is x = x0 + i dx"}}},
+      {"height_r32",
+       {{"file", "height.r32"}, {"nx", hf.nx()}, {"nz", hf.nz()}, {"dx", hf.dx()}, {"dz", hf.dz()},
+        {"format", "float32 little-endian, row-major: nz rows of nx heights [m]"}}},
+      {"erosion_png",
+       {{"file", "erosion.png"}, {"scale_m", changeScale},
+        {"mapping", "white: unchanged; red: erosion; blue: deposition; full colour at |dh| = scale_m"}}}};
   writeAtomically(dir / "summary.json", [&](std::ostream& out) { out << summary.dump(2) << "\n"; });
 
   if (!failure.empty()) {

@@ -1,8 +1,11 @@
 #include "scene/output.h"
 
+#include <png.h>
 #include <unistd.h>
 
+#include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <fstream>
 #include <iomanip>
 #include <stdexcept>
@@ -32,20 +35,93 @@ void writeAtomically(const std::filesystem::path& path,
   }
 }
 
-void writeParticlesPly(const std::filesystem::path& path, const Fluid& f, double time) {
+void writeParticlesPly(const std::filesystem::path& path, const Fluid& f, double particleVolume,
+                       double time) {
   writeAtomically(path, [&](std::ostream& out) {
     out << "ply\nformat binary_little_endian 1.0\n";
     out << "comment time_s " << std::setprecision(17) << time << "\n";
     out << "comment y_up\n";
     out << "element vertex " << f.size() << "\n";
-    for (const char* name : {"x", "y", "z", "vx", "vy", "vz"})
+    for (const char* name : {"x", "y", "z", "vx", "vy", "vz", "c"})
       out << "property float " << name << "\n";
     out << "end_header\n";
     for (size_t i = 0; i < f.size(); ++i) {
-      float row[6] = {f.x[i].x(), f.x[i].y(), f.x[i].z(), f.v[i].x(), f.v[i].y(), f.v[i].z()};
+      float row[7] = {f.x[i].x(), f.x[i].y(), f.x[i].z(), f.v[i].x(),
+                      f.v[i].y(), f.v[i].z(), float(f.sed[i] / particleVolume)};
       out.write(reinterpret_cast<const char*>(row), sizeof row);  // x86-64 is little-endian
     }
   });
+}
+
+namespace {
+
+// Writes an image through libpng into the stream: 16-bit grey (channels 1, depth 16) or 8-bit RGB.
+void writePng(std::ostream& out, int width, int height, int channels, int depth,
+              const std::vector<unsigned char>& rows) {
+  png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, nullptr, nullptr, nullptr);
+  png_infop info = png ? png_create_info_struct(png) : nullptr;
+  if (!png || !info) throw std::runtime_error("libpng: out of memory");
+  if (setjmp(png_jmpbuf(png))) {
+    png_destroy_write_struct(&png, &info);
+    throw std::runtime_error("libpng failed to encode the image");
+  }
+  png_set_write_fn(
+      png, &out,
+      [](png_structp p, png_bytep data, png_size_t len) {
+        static_cast<std::ostream*>(png_get_io_ptr(p))->write(reinterpret_cast<char*>(data), len);
+      },
+      [](png_structp p) { static_cast<std::ostream*>(png_get_io_ptr(p))->flush(); });
+  png_set_IHDR(png, info, png_uint_32(width), png_uint_32(height), depth,
+               channels == 1 ? PNG_COLOR_TYPE_GRAY : PNG_COLOR_TYPE_RGB, PNG_INTERLACE_NONE,
+               PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
+  png_write_info(png, info);
+  if (depth == 16) png_set_swap(png);  // our samples are little-endian; PNG is big-endian
+  const size_t stride = size_t(width) * channels * (depth / 8);
+  for (int r = 0; r < height; ++r)
+    png_write_row(png, const_cast<png_bytep>(rows.data() + size_t(r) * stride));
+  png_write_end(png, nullptr);
+  png_destroy_write_struct(&png, &info);
+}
+
+}  // namespace
+
+std::pair<double, double> writeHeightPng16(const std::filesystem::path& path,
+                                           const Heightfield& hf) {
+  const double lo = hf.minHeight(), hi = hf.maxHeight(), range = hi > lo ? hi - lo : 1.0;
+  std::vector<unsigned char> rows(size_t(hf.nx()) * hf.nz() * 2);
+  for (int k = 0; k < hf.nz(); ++k)
+    for (int i = 0; i < hf.nx(); ++i) {
+      auto v = uint16_t(std::lround((hf.at(i, k) - lo) / range * 65535.0));
+      std::memcpy(&rows[(size_t(k) * hf.nx() + i) * 2], &v, 2);
+    }
+  writeAtomically(path, [&](std::ostream& out) { writePng(out, hf.nx(), hf.nz(), 1, 16, rows); });
+  return {lo, hi};
+}
+
+void writeHeightRaw(const std::filesystem::path& path, const Heightfield& hf) {
+  writeAtomically(path, [&](std::ostream& out) {
+    for (double h : hf.heights()) {
+      float v = float(h);
+      out.write(reinterpret_cast<const char*>(&v), sizeof v);
+    }
+  });
+}
+
+double writeErosionPng(const std::filesystem::path& path, const Heightfield& hf,
+                       const std::vector<double>& change) {
+  double scale = 0;
+  for (double d : change) scale = std::max(scale, std::abs(d));
+  std::vector<unsigned char> rows(size_t(hf.nx()) * hf.nz() * 3);
+  for (size_t v = 0; v < change.size(); ++v) {
+    const double t = scale > 0 ? std::min(std::abs(change[v]) / scale, 1.0) : 0.0;
+    const auto fade = static_cast<unsigned char>(std::lround(255.0 * (1.0 - t)));
+    unsigned char* px = &rows[v * 3];
+    if (change[v] < 0) px[0] = 255, px[1] = fade, px[2] = fade;       // erosion: red
+    else if (change[v] > 0) px[0] = fade, px[1] = fade, px[2] = 255;  // deposition: blue
+    else px[0] = px[1] = px[2] = 255;
+  }
+  writeAtomically(path, [&](std::ostream& out) { writePng(out, hf.nx(), hf.nz(), 3, 8, rows); });
+  return scale;
 }
 
 }  // namespace scour

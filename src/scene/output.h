@@ -9,6 +9,10 @@
 #include <string>
 
 #include "engine/fluid.h"
+#include "engine/heightfield.h"
+
+#include <utility>
+#include <vector>
 
 namespace scour {
 
@@ -17,8 +21,22 @@ namespace scour {
 void writeAtomically(const std::filesystem::path& path,
                      const std::function<void(std::ostream&)>& fill);
 
-/// Binary little-endian PLY of the fluid particles: x y z vx vy vz (float), with the simulated
-/// time in a `comment time_s` header line. y is up.
-void writeParticlesPly(const std::filesystem::path& path, const Fluid& f, double time);
+/// Binary little-endian PLY of the fluid particles: x y z vx vy vz c (float; c the sediment
+/// concentration C), with the simulated time in a `comment time_s` header line. y is up.
+void writeParticlesPly(const std::filesystem::path& path, const Fluid& f, double particleVolume,
+                       double time);
+
+/// A heightfield image: row k holds z = z0 + k·dz, column i holds x = x0 + i·dx.
+/// 16-bit greyscale PNG, v = round((h − lo) / (hi − lo) · 65535). Returns {lo, hi}.
+std::pair<double, double> writeHeightPng16(const std::filesystem::path& path, const Heightfield& hf);
+
+/// Raw float32, little-endian, row-major (rows of nx values, nz rows; same order as the PNG).
+void writeHeightRaw(const std::filesystem::path& path, const Heightfield& hf);
+
+/// False-colour map of the height change since the start, like the paper's Figures 1 and 8:
+/// white unchanged, red erosion, blue deposition, full colour at |Δh| = scale (symmetric).
+/// 8-bit RGB PNG; returns the scale used [m] (the largest |Δh|, or 0 if nothing moved).
+double writeErosionPng(const std::filesystem::path& path, const Heightfield& hf,
+                       const std::vector<double>& change);
 
 }  // namespace scour

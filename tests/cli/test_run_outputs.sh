@@ -31,7 +31,16 @@ assert abs(t - s["sim_time_s"]) < 1e-12, (t, s["sim_time_s"])
 n = int(head.split("element vertex ")[1].split()[0])
 assert n == s["particles"]
 size = os.path.getsize(os.path.join(d, names[-1]))
-assert size == len(head) + len("end_header\n") + n * 24, "PLY body is 6 floats per particle"
+assert size == len(head) + len("end_header\n") + n * 28, "PLY body is 7 floats per particle"
+assert "property float c" in head
+for f in ["height.png", "height.r32", "erosion.png"]:
+    assert os.path.exists(os.path.join(d, f)), f
+assert open(os.path.join(d, "height.png"), "rb").read(8) == b"\x89PNG\r\n\x1a\n"
+assert s["exports"]["height_png"]["max_m"] >= s["exports"]["height_png"]["min_m"]
+assert os.path.getsize(os.path.join(d, "height.r32")) == 4 * s["exports"]["height_r32"]["nx"] * s["exports"]["height_r32"]["nz"]
+for k in ["terrain_m3", "suspended_m3", "removed_m3", "initial_m3", "relative_error"]:
+    assert k in s["soil"], k
+assert "c_min" in s["invariants"] and "c_max" in s["invariants"]
 print("run outputs ok")
 PY
 "$scour" bench dambreak --steps 3 --warmup 1 --threads 1 --json > "$tmp/bench.json"

@@ -1,0 +1,100 @@
+// Terrain exports read back: the 16-bit PNG keeps 16-bit precision and the stated mapping, the
+// raw float file is row-major little-endian, the erosion map colours erosion red and deposition
+// blue; the particle PLY carries C.
+#include <catch2/catch.hpp>
+#include <stb_image.h>
+
+#include <unistd.h>
+
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+
+#include "scene/output.h"
+
+using namespace scour;
+namespace fs = std::filesystem;
+
+namespace {
+fs::path tempDir() {
+  fs::path d = fs::temp_directory_path() / ("scour_exports_" + std::to_string(::getpid()));
+  fs::create_directories(d);
+  return d;
+}
+}  // namespace
+
+TEST_CASE("16-bit height PNG and raw float heights read back", "[exports]") {
+  Heightfield hf(37, 23, 1.0, 2.0);
+  for (int k = 0; k < hf.nz(); ++k)
+    for (int i = 0; i < hf.nx(); ++i) hf.at(i, k) = 100.0 + 0.37 * i * i + 3.1 * k;
+  fs::path d = tempDir();
+  auto [lo, hi] = writeHeightPng16(d / "h.png", hf);
+  CHECK(lo == hf.minHeight());
+  CHECK(hi == hf.maxHeight());
+  int w = 0, h = 0, comp = 0;
+  stbi_us* px = stbi_load_16((d / "h.png").c_str(), &w, &h, &comp, 0);
+  REQUIRE(px);
+  CHECK(w == 37);
+  CHECK(h == 23);
+  CHECK(comp == 1);
+  double worst = 0;
+  for (int k = 0; k < h; ++k)
+    for (int i = 0; i < w; ++i) {
+      double back = lo + px[k * w + i] / 65535.0 * (hi - lo);
+      worst = std::max(worst, std::abs(back - hf.at(i, k)));
+    }
+  stbi_image_free(px);
+  CHECK(worst <= 0.5 / 65535.0 * (hi - lo) * 1.0000001);  // half a 16-bit step
+
+  writeHeightRaw(d / "h.r32", hf);
+  REQUIRE(fs::file_size(d / "h.r32") == size_t(37 * 23 * 4));
+  std::ifstream in(d / "h.r32", std::ios::binary);
+  std::vector<float> raw(37 * 23);
+  in.read(reinterpret_cast<char*>(raw.data()), std::streamsize(raw.size() * 4));
+  CHECK(raw[5 * 37 + 11] == float(hf.at(11, 5)));
+  CHECK(raw.back() == float(hf.at(36, 22)));
+  for (const auto& e : fs::directory_iterator(d))
+    CHECK(e.path().string().find(".tmp") == std::string::npos);
+  fs::remove_all(d);
+}
+
+TEST_CASE("erosion map: red erosion, blue deposition, white unchanged", "[exports]") {
+  Heightfield hf(4, 2, 1.0, 1.0);
+  std::vector<double> change = {0, -0.2, -0.1, 0, 0.1, 0.2, 0, 0};
+  fs::path d = tempDir();
+  double scale = writeErosionPng(d / "e.png", hf, change);
+  CHECK(scale == 0.2);
+  int w = 0, h = 0, comp = 0;
+  unsigned char* px = stbi_load((d / "e.png").c_str(), &w, &h, &comp, 3);
+  REQUIRE(px);
+  auto rgb = [&](int v) { return std::array<int, 3>{px[v * 3], px[v * 3 + 1], px[v * 3 + 2]}; };
+  CHECK(rgb(0) == std::array<int, 3>{255, 255, 255});
+  CHECK(rgb(1) == std::array<int, 3>{255, 0, 0});      // full erosion
+  CHECK(rgb(2) == std::array<int, 3>{255, 128, 128});  // half erosion
+  CHECK(rgb(5) == std::array<int, 3>{0, 0, 255});      // full deposition
+  CHECK(rgb(4) == std::array<int, 3>{128, 128, 255});
+  stbi_image_free(px);
+  fs::remove_all(d);
+}
+
+TEST_CASE("particle PLY carries the sediment concentration", "[exports]") {
+  Fluid f;
+  f.push(Vec3f(1, 2, 3), Vec3f(4, 5, 6), 0, 1000.0f);
+  f.sed[0] = 0.25e-6;
+  fs::path d = tempDir();
+  writeParticlesPly(d / "p.ply", f, 1e-6, 0.125);
+  std::ifstream in(d / "p.ply", std::ios::binary);
+  std::string all((std::istreambuf_iterator<char>(in)), {});
+  auto end = all.find("end_header\n");
+  REQUIRE(end != std::string::npos);
+  std::string head = all.substr(0, end);
+  CHECK(head.find("comment time_s 0.125") != std::string::npos);
+  CHECK(head.find("property float c\n") != std::string::npos);
+  float row[7];
+  REQUIRE(all.size() == end + 11 + sizeof row);
+  std::memcpy(row, all.data() + end + 11, sizeof row);
+  CHECK(row[0] == 1.0f);
+  CHECK(row[5] == 6.0f);
+  CHECK(row[6] == Approx(0.25));
+  fs::remove_all(d);
+}
