@@ -418,7 +418,12 @@ size_t World::memoryBytes() const {
   size_t per = sizeof(Vec3f) * 4 + sizeof(float) * 3 + sizeof(uint32_t) + sizeof(double);
   return f_.x.capacity() * per + grid_.bytes() + nbrs_.bytes() + bnbrs_.bytes() +
          b_.x.capacity() * (sizeof(Vec3f) + sizeof(int) + sizeof(double) + sizeof(Eigen::Vector2f)) +
-         (bstart_.capacity() + bsorted_.capacity()) * sizeof(uint32_t);
+         (bstart_.capacity() + bsorted_.capacity()) * sizeof(uint32_t) +
+         (sedimentWork_.conc.capacity() + sedimentWork_.hind.capacity() +
+          sedimentWork_.pairGeometry.capacity()) * sizeof(float) +
+         sedimentWork_.scale.capacity() * sizeof(SedimentWorkspace::Scales) +
+         sedimentWork_.delta.capacity() * sizeof(double) +
+         sedimentWork_.pairOffset.capacity() * sizeof(size_t);
 }
 
 }  // namespace scour
