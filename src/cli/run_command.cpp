@@ -136,6 +136,7 @@ int runScene(const RunOptions& o) {
                      {"removed_m3", soil.removed},
                      {"initial_m3", soil.initial},
                      {"relative_error", soil.relativeError()},
+                     {"worst_relative_error", inv.soil_relative_error},
                      {"reference_height_m", world->initialTerrain().minHeight()}};
   summary["flow"] = {{"emitted", world->emitted()},
                      {"blocked_slots", world->blockedSlots()},

@@ -379,6 +379,19 @@ void World::checkInvariants() {
       << v.z() << ")";
     throw InvariantViolation(o.str());
   }
+  // The soil budget, summed from scratch (every vertex, every particle) when soil can move.
+  if (fx_.erosion || fx_.deposition || fx_.settling || fx_.diffusion) {
+    const SoilBudget soil = soilBudget();
+    const double err = soil.relativeError();
+    inv_.soil_relative_error = std::max(inv_.soil_relative_error, err);
+    if (!(err <= kSoilTolerance)) {
+      std::ostringstream o;
+      o << "step " << step_ << " (t = " << time_ << " s): the soil budget is off by " << err
+        << " relative (terrain " << soil.terrain << " + suspended " << soil.suspended
+        << " + removed " << soil.removed << " m³ against " << soil.initial << " m³ at the start)";
+      throw InvariantViolation(o.str());
+    }
+  }
   if (badC >= 0) {
     std::ostringstream o;
     o << where(badC) << " carries sediment concentration C = " << f_.sed[badC] / sk_.volume

@@ -78,6 +78,7 @@ struct InvariantReport {
   double max_penetration_over_ds = 0.0;  ///< deepest particle below the terrain, in Δs
   long escaped = 0;                      ///< particles found beyond a closed wall
   double c_min = 0.0, c_max = 0.0;       ///< extreme sediment concentrations seen
+  double soil_relative_error = 0.0;      ///< worst |budget − initial| / initial over the steps
 };
 
 class InvariantViolation : public std::runtime_error {
@@ -132,6 +133,8 @@ class World {
   long emitted() const { return emittedTotal_; }
   long blockedSlots() const;
 
+  /// A budget further than this from its initial value stops the run (relative).
+  static constexpr double kSoilTolerance = 1e-6;
   /// The soil budget now (the terrain part is summed over every vertex).
   SoilBudget soilBudget() const;
   /// Height change of every vertex since the start [m].
