@@ -34,20 +34,21 @@ void setThreads(int threads) {
 
 Scene loadScene(const std::string& name, double scale, long particles,
                 const std::vector<std::string>& sets) {
-  Scene s;
+  SceneSpec spec;
   try {
-    s = makePreset(name, scale, particles);
+    spec = presetSpec(name, scale, particles);
   } catch (const std::invalid_argument& e) {
     throw InputError(e.what());
   }
+  // Overrides edit the spec before it is built, so a new Δs refills the water at that spacing.
   for (const std::string& kv : sets) {
     auto eq = kv.find('=');
     if (eq == std::string::npos)
       throw InputError("--set: expected key=value, found '" + kv + "'");
-    std::string err = setParam(s.desc.params, kv.substr(0, eq), kv.substr(eq + 1));
+    std::string err = setParam(spec.params, kv.substr(0, eq), kv.substr(eq + 1));
     if (!err.empty()) throw InputError("--set: " + err);
   }
-  return s;
+  return buildScene(spec);
 }
 
 namespace {

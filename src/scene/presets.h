@@ -1,6 +1,11 @@
 #pragma once
-// Built-in scenes. Each preset is defined once here and shared by `scour run`, `scour bench` and
-// the tests. `scale` multiplies the particle count (roughly), for quick runs.
+// Scenes as data. A SceneSpec describes a scene in the units a person thinks in (metres, m³/s,
+// parameters by name): the terrain as a generator with its settings, blocks of water, sources,
+// sinks, effects. buildScene turns it into the engine's WorldDesc (particles on a lattice of the
+// spec's Δs, the heightfield). Because overrides (`--set`) edit the spec before it is built, a
+// new Δs refills the water at that spacing.
+//
+// Each preset is defined once here and shared by `scour run`, `scour bench` and the tests.
 
 #include <string>
 #include <vector>
@@ -9,14 +14,43 @@
 
 namespace scour {
 
+/// A procedural terrain over [0, length_x] × [0, length_z].
+struct TerrainSpec {
+  std::string kind = "flat";  ///< flat | valley | rolling
+  double length_x = 1.0, length_z = 1.0;  ///< extent [m]
+  double cell = 0.05;                    ///< grid spacing (rounded to fit the extent) [m]
+  double slope = 0.0;      ///< valley: drop per metre along +x [-]
+  double side_rise = 0.0;  ///< valley: height of the sides above the axis [m]
+  double amplitude = 0.0;  ///< rolling: height of the bumps [m]
+  double base = 0.0;       ///< height added everywhere [m]
+};
+
+struct WaterBlock {
+  Eigen::Vector3d min = Eigen::Vector3d::Zero(), max = Eigen::Vector3d::Zero();  ///< [m]
+};
+
+/// Initial sediment: the particle nearest `position` starts at concentration c.
+struct SedimentMark {
+  Eigen::Vector3d position = Eigen::Vector3d::Zero();
+  double c = 0.0;
+};
+
+struct SceneSpec {
+  std::string name, description;
+  SimParams params;
+  TerrainSpec terrain;
+  Domain domain;
+  Effects effects;
+  std::vector<WaterBlock> blocks;
+  std::vector<Source> sources;
+  std::vector<Sink> sinks;
+  std::vector<SedimentMark> sediment;
+};
+
+/// A built scene: its spec and the engine's description made from it.
 struct Scene {
-  std::string name;
-  std::string description;
+  SceneSpec spec;
   WorldDesc desc;
-  /// Free-form description of how the terrain was made (goes into the resolved scene JSON).
-  std::string terrain_kind;
-  /// Axis-aligned blocks the initial water was made of, as (lo, hi) pairs [m].
-  std::vector<std::pair<Eigen::Vector3d, Eigen::Vector3d>> water_blocks;
 };
 
 struct PresetInfo {
@@ -25,11 +59,21 @@ struct PresetInfo {
 };
 const std::vector<PresetInfo>& presetList();
 
-/// Builds a preset. `particles` > 0 asks for about that many particles where the preset supports
-/// it (the bench block). Throws std::invalid_argument for an unknown name, naming the valid ones.
-Scene makePreset(const std::string& name, double scale = 1.0, long particles = 0);
+/// The spec of a preset. `scale` multiplies the particle count (roughly); `particles` > 0 asks
+/// for about that many where the preset supports it (the bench block). Throws
+/// std::invalid_argument for an unknown name, naming the valid ones.
+SceneSpec presetSpec(const std::string& name, double scale = 1.0, long particles = 0);
 
-/// Fills the box [lo, hi] with particles on a cubic lattice of spacing Δs, centred in each cell.
-void fillBlock(Scene& s, const Eigen::Vector3d& lo, const Eigen::Vector3d& hi);
+/// Builds the heightfield of a terrain spec.
+Heightfield buildTerrain(const TerrainSpec& t);
+/// Builds the engine's description: water blocks filled on a cubic lattice of spacing Δs (each
+/// cell centre, at hydrostatic pressure below the block's top), sediment marks on the nearest
+/// particle.
+Scene buildScene(const SceneSpec& spec);
+
+/// presetSpec + buildScene.
+inline Scene makePreset(const std::string& name, double scale = 1.0, long particles = 0) {
+  return buildScene(presetSpec(name, scale, particles));
+}
 
 }  // namespace scour

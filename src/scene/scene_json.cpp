@@ -25,35 +25,35 @@ json paramsToJson(const SimParams& p) {
   return out;
 }
 
-json sceneToJson(const Scene& s) {
-  const WorldDesc& d = s.desc;
+json sceneToJson(const Scene& scene) {
+  const SceneSpec& s = scene.spec;
   json j;
   j["version"] = 1;
   j["name"] = s.name;
   j["description"] = s.description;
-  j["params"] = paramsToJson(d.params);
-  j["derived"] = {{"support_m", d.params.support()}, {"particle_mass_kg", d.params.particleMass()}};
-  const Heightfield& hf = d.terrain;
-  j["terrain"] = {{"kind", s.terrain_kind},
-                  {"nx", hf.nx()},
-                  {"nz", hf.nz()},
-                  {"dx", hf.dx()},
-                  {"dz", hf.dz()},
-                  {"origin", {hf.x0(), hf.z0()}},
-                  {"extent_m", {hf.xMax() - hf.x0(), hf.zMax() - hf.z0()}},
-                  {"height_min", hf.minHeight()},
-                  {"height_max", hf.maxHeight()}};
-  j["domain"] = {{"walls", d.domain.walls}};
-  const Effects& e = d.effects;
+  j["params"] = paramsToJson(s.params);
+  const TerrainSpec& t = s.terrain;
+  j["terrain"] = {{"kind", t.kind},
+                  {"length_x", t.length_x},
+                  {"length_z", t.length_z},
+                  {"cell", t.cell},
+                  {"slope", t.slope},
+                  {"side_rise", t.side_rise},
+                  {"amplitude", t.amplitude},
+                  {"base", t.base}};
+  j["domain"] = {{"walls", s.domain.walls}};
+  const Effects& e = s.effects;
   j["effects"] = {{"fluid_motion", e.fluid_motion}, {"surface_tension", e.surface_tension},
                   {"no_slip", e.no_slip},           {"settling", e.settling},
                   {"diffusion", e.diffusion},       {"deposition", e.deposition},
                   {"erosion", e.erosion}};
   json blocks = json::array();
-  for (const auto& [lo, hi] : s.water_blocks) blocks.push_back({{"min", vec(lo)}, {"max", vec(hi)}});
-  j["water"] = {{"blocks", blocks}, {"particles", d.particles.size()}};
+  for (const WaterBlock& b : s.blocks) blocks.push_back({{"min", vec(b.min)}, {"max", vec(b.max)}});
+  json marks = json::array();
+  for (const SedimentMark& m : s.sediment) marks.push_back({{"position", vec(m.position)}, {"c", m.c}});
+  j["water"] = {{"blocks", blocks}, {"sediment", marks}};
   json sources = json::array();
-  for (const Source& src : d.sources)
+  for (const Source& src : s.sources)
     sources.push_back({{"position", vec(src.center)},
                        {"radius", src.radius},
                        {"direction", vec(src.direction)},
@@ -62,8 +62,19 @@ json sceneToJson(const Scene& s) {
                        {"stop", std::isfinite(src.stop) ? json(src.stop) : json(nullptr)}});
   j["sources"] = sources;
   json sinks = json::array();
-  for (const Sink& k : d.sinks) sinks.push_back({{"min", vec(k.lo)}, {"max", vec(k.hi)}});
+  for (const Sink& k : s.sinks) sinks.push_back({{"min", vec(k.lo)}, {"max", vec(k.hi)}});
   j["sinks"] = sinks;
+  // What the spec built to (not read back): the grid and the particle count.
+  const Heightfield& hf = scene.desc.terrain;
+  j["built"] = {{"particles", scene.desc.particles.size()},
+                {"support_m", s.params.support()},
+                {"particle_mass_kg", s.params.particleMass()},
+                {"terrain_nx", hf.nx()},
+                {"terrain_nz", hf.nz()},
+                {"terrain_dx", hf.dx()},
+                {"terrain_dz", hf.dz()},
+                {"height_min", hf.minHeight()},
+                {"height_max", hf.maxHeight()}};
   return j;
 }
 

@@ -71,3 +71,14 @@ set -e
 grep -q "invariant violated at step " <<<"$msg" || { echo "message: $msg"; exit 1; }
 python3 -c "import json,sys; s=json.load(open('$tmp/bad/summary.json')); assert s['status']=='invariant_violated' and 'particle' in s['error'], s"
 echo "invariant violation reported: $(head -1 <<<"$msg")"
+# --set edits the scene before it is built: a new spacing refills the water at that spacing.
+"$scour" run dambreak --headless --steps 1 --set fluid.spacing=0.0057 --out "$tmp/sp" >/dev/null
+python3 - "$tmp/sp/summary.json" <<'PY'
+import json, sys
+s = json.load(open(sys.argv[1]))
+a, ds = 0.05715, 0.0057
+want = round(a / ds) * round(2 * a / ds) * round(6 * (a / 16) / ds)
+assert s["scene"]["params"]["fluid"]["spacing"] == ds
+assert s["particles"] == want, (s["particles"], want)
+print("spacing override refills the water:", want, "particles")
+PY
