@@ -35,8 +35,17 @@ void setThreads(int threads) {
 Scene loadScene(const std::string& name, double scale, long particles,
                 const std::vector<std::string>& sets) {
   SceneSpec spec;
+  const bool file = name.find('/') != std::string::npos || name.ends_with(".json");
   try {
-    spec = presetSpec(name, scale, particles);
+    if (file) {
+      spec = loadSceneFile(name);
+      if (!(scale > 0) || !std::isfinite(scale)) throw InputError("--scale must be a positive number");
+      spec.params.spacing /= std::cbrt(scale);
+    } else {
+      spec = presetSpec(name, scale, particles);
+    }
+  } catch (const SceneError& e) {
+    throw InputError(e.what());
   } catch (const std::invalid_argument& e) {
     throw InputError(e.what());
   }
@@ -180,7 +189,8 @@ int runScene(const RunOptions& o) {
 Command addRunCommand(CLI::App& app) {
   auto o = std::make_shared<RunOptions>();
   CLI::App* c = app.add_subcommand("run", "Run a scene and write its outputs");
-  c->add_option("scene", o->scene, "Built-in scene name (see `scour presets`)")->required();
+  c->add_option("scene", o->scene, "Built-in scene name (see `scour presets`) or a scene file (.json)")
+      ->required();
   c->add_flag("--headless", o->headless, "Run without a window");
   auto* steps = c->add_option("--steps", o->steps, "Number of steps")->check(kPositive);
   auto* time = c->add_option("--time", o->time, "Simulated seconds")->check(kPositive);

@@ -1,11 +1,148 @@
 #include "scene/scene_json.h"
 
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+
 namespace scour {
 
 using nlohmann::json;
 
 namespace {
 json vec(const Eigen::Vector3d& v) { return json::array({v.x(), v.y(), v.z()}); }
+
+// The effects a scene can call for, by name. Sources and sinks are on when the scene has any.
+const std::vector<std::pair<std::string, bool Effects::*>>& effectTable() {
+  static const std::vector<std::pair<std::string, bool Effects::*>> t = {
+      {"fluid_motion", &Effects::fluid_motion}, {"surface_tension", &Effects::surface_tension},
+      {"no_slip", &Effects::no_slip},           {"settling", &Effects::settling},
+      {"diffusion", &Effects::diffusion},       {"deposition", &Effects::deposition},
+      {"erosion", &Effects::erosion}};
+  return t;
+}
+
+size_t distance(const std::string& a, const std::string& b) {
+  std::vector<size_t> row(b.size() + 1);
+  for (size_t k = 0; k <= b.size(); ++k) row[k] = k;
+  for (size_t i = 1; i <= a.size(); ++i) {
+    size_t diag = row[0];
+    row[0] = i;
+    for (size_t k = 1; k <= b.size(); ++k) {
+      size_t up = row[k];
+      row[k] = std::min({row[k] + 1, row[k - 1] + 1, diag + (a[i - 1] == b[k - 1] ? 0 : 1)});
+      diag = up;
+    }
+  }
+  return row[b.size()];
+}
+
+std::string nearest(const std::string& key, const std::vector<std::string>& valid) {
+  std::string best;
+  size_t bestD = SIZE_MAX;
+  for (const auto& v : valid)
+    if (size_t d = distance(key, v); d < bestD) bestD = d, best = v;
+  return best;
+}
+
+std::string shown(const json& v) {
+  std::string t = v.dump();
+  return t.size() > 60 ? t.substr(0, 57) + "..." : t;
+}
+
+// One JSON object being read: typed getters that say where and what, and a check that every key
+// was used.
+class Fields {
+ public:
+  Fields(const json& j, std::string path, const std::string& file) : j_(j), path_(std::move(path)), file_(file) {
+    if (!j.is_object()) fail(path_, "an object", j);
+  }
+  [[noreturn]] void fail(const std::string& at, const std::string& expected, const json& found) const {
+    throw SceneError(file_ + ": " + (at.empty() ? "(top level)" : at) + ": expected " + expected +
+                     ", found " + shown(found));
+  }
+  std::string at(const std::string& key) const { return path_.empty() ? key : path_ + "." + key; }
+  bool has(const std::string& key) {
+    known_.push_back(key);
+    return j_.contains(key);
+  }
+  const json& raw(const std::string& key) {
+    known_.push_back(key);
+    return j_.at(key);
+  }
+  double number(const std::string& key, double fallback, double lo, double hi, bool required = false) {
+    if (!has(key)) {
+      if (required) throw SceneError(file_ + ": " + at(key) + ": required field is missing");
+      return fallback;
+    }
+    const json& v = j_.at(key);
+    if (!v.is_number()) fail(at(key), "a number", v);
+    const double x = v.get<double>();
+    char range[96];
+    std::snprintf(range, sizeof range, "a finite number in [%g, %g]", lo, hi);
+    if (!std::isfinite(x) || x < lo || x > hi) fail(at(key), range, v);
+    return x;
+  }
+  bool boolean(const std::string& key, bool fallback) {
+    if (!has(key)) return fallback;
+    const json& v = j_.at(key);
+    if (!v.is_boolean()) fail(at(key), "true or false", v);
+    return v.get<bool>();
+  }
+  std::string text(const std::string& key, const std::string& fallback,
+                   const std::vector<std::string>& allowed = {}) {
+    if (!has(key)) return fallback;
+    const json& v = j_.at(key);
+    if (!v.is_string()) fail(at(key), "a string", v);
+    std::string t = v.get<std::string>();
+    if (!allowed.empty() && std::find(allowed.begin(), allowed.end(), t) == allowed.end()) {
+      std::string names;
+      for (const auto& a : allowed) names += (names.empty() ? "" : ", ") + a;
+      fail(at(key), "one of " + names, v);
+    }
+    return t;
+  }
+  Eigen::Vector3d vec3(const std::string& key, bool required = true,
+                       Eigen::Vector3d fallback = Eigen::Vector3d::Zero()) {
+    if (!has(key)) {
+      if (required) throw SceneError(file_ + ": " + at(key) + ": required field is missing");
+      return fallback;
+    }
+    const json& v = j_.at(key);
+    if (!v.is_array() || v.size() != 3) fail(at(key), "an array of 3 numbers", v);
+    Eigen::Vector3d out;
+    for (int a = 0; a < 3; ++a) {
+      if (!v[a].is_number() || !std::isfinite(v[a].get<double>()))
+        fail(at(key) + "[" + std::to_string(a) + "]", "a finite number", v[a]);
+      out[a] = v[a].get<double>();
+    }
+    return out;
+  }
+  const json& array(const std::string& key) {
+    static const json empty = json::array();
+    if (!has(key)) return empty;
+    const json& v = j_.at(key);
+    if (!v.is_array()) fail(at(key), "an array", v);
+    return v;
+  }
+  /// Every key must have been asked for; the first unknown one is refused.
+  void finish() const {
+    for (const auto& [key, value] : j_.items()) {
+      if (std::find(known_.begin(), known_.end(), key) != known_.end()) continue;
+      throw SceneError(file_ + ": " + at(key) + ": unknown key (did you mean '" +
+                       nearest(key, known_) + "'?)");
+    }
+  }
+
+ private:
+  const json& j_;
+  std::string path_;
+  const std::string& file_;
+  std::vector<std::string> known_;
+};
+
+constexpr double kBig = 1e6;  // metres: larger extents are surely a typo
+
 }  // namespace
 
 json paramsToJson(const SimParams& p) {
@@ -43,10 +180,10 @@ json sceneToJson(const Scene& scene) {
                   {"base", t.base}};
   j["domain"] = {{"walls", s.domain.walls}};
   const Effects& e = s.effects;
-  j["effects"] = {{"fluid_motion", e.fluid_motion}, {"surface_tension", e.surface_tension},
-                  {"no_slip", e.no_slip},           {"settling", e.settling},
-                  {"diffusion", e.diffusion},       {"deposition", e.deposition},
-                  {"erosion", e.erosion}};
+  json effects = json::array();
+  for (const auto& [name, member] : effectTable())
+    if (e.*member) effects.push_back(name);
+  j["effects"] = effects;
   json blocks = json::array();
   for (const WaterBlock& b : s.blocks) blocks.push_back({{"min", vec(b.min)}, {"max", vec(b.max)}});
   json marks = json::array();
@@ -76,6 +213,169 @@ json sceneToJson(const Scene& scene) {
                 {"height_min", hf.minHeight()},
                 {"height_max", hf.maxHeight()}};
   return j;
+}
+
+SceneSpec specFromJson(const json& j, const std::string& file) {
+  SceneSpec s;
+  Fields top(j, "", file);
+  const double version = top.number("version", 0, 1, 1, true);
+  (void)version;
+  s.name = top.text("name", "scene");
+  s.description = top.text("description", "");
+  if (top.has("params")) {
+    Fields groups(top.raw("params"), "params", file);
+    std::vector<std::string> names;
+    for (const ParamInfo& i : paramTable()) {
+      std::string key = i.key;
+      std::string g = key.substr(0, key.find('.'));
+      if (std::find(names.begin(), names.end(), g) == names.end()) names.push_back(g);
+    }
+    for (const std::string& g : names) {
+      if (!groups.has(g)) continue;
+      const json& obj = groups.raw(g);
+      Fields f(obj, "params." + g, file);
+      for (const ParamInfo& i : paramTable()) {
+        std::string key = i.key;
+        if (key.substr(0, key.find('.')) != g) continue;
+        std::string name = key.substr(key.find('.') + 1);
+        if (!f.has(name)) continue;
+        const json& v = f.raw(name);
+        std::string value;
+        if (i.choices) {
+          if (!v.is_string()) f.fail(f.at(name), "a string", v);
+          value = v.get<std::string>();
+        } else {
+          if (!v.is_number()) f.fail(f.at(name), "a number", v);
+          char buf[64];
+          std::snprintf(buf, sizeof buf, "%.17g", v.get<double>());
+          value = buf;
+        }
+        std::string err = setParam(s.params, key, value);
+        if (!err.empty()) throw SceneError(file + ": params." + key + ": " + err);
+      }
+      f.finish();
+    }
+    groups.finish();
+  }
+  {
+    const json terrain = top.has("terrain") ? top.raw("terrain") : json::object();
+    Fields t(terrain, "terrain", file);
+    s.terrain.kind = t.text("kind", "flat", {"flat", "valley", "rolling"});
+    s.terrain.length_x = t.number("length_x", 1.0, 1e-6, kBig);
+    s.terrain.length_z = t.number("length_z", 1.0, 1e-6, kBig);
+    s.terrain.cell = t.number("cell", 0.05, 1e-6, kBig);
+    s.terrain.slope = t.number("slope", 0.0, -100, 100);
+    s.terrain.side_rise = t.number("side_rise", 0.0, -kBig, kBig);
+    s.terrain.amplitude = t.number("amplitude", 0.0, -kBig, kBig);
+    s.terrain.base = t.number("base", 0.0, -kBig, kBig);
+    t.finish();
+    const double cells = (s.terrain.length_x / s.terrain.cell + 1) * (s.terrain.length_z / s.terrain.cell + 1);
+    if (cells > 4e7) {
+      char msg[160];
+      std::snprintf(msg, sizeof msg, "%s: terrain: %.3g grid vertices (length / cell) is more than the 4e7 this build allows",
+                    file.c_str(), cells);
+      throw SceneError(msg);
+    }
+  }
+  if (top.has("domain")) {
+    Fields d(top.raw("domain"), "domain", file);
+    s.domain.walls = d.boolean("walls", true);
+    d.finish();
+  }
+  if (top.has("effects")) {
+    const json& e = top.raw("effects");
+    if (!e.is_array()) top.fail("effects", "an array of effect names", e);
+    s.effects = Effects{};
+    for (const auto& [name, member] : effectTable()) s.effects.*member = false;
+    std::vector<std::string> names;
+    for (const auto& [name, member] : effectTable()) names.push_back(name);
+    for (size_t k = 0; k < e.size(); ++k) {
+      const std::string at = "effects[" + std::to_string(k) + "]";
+      if (!e[k].is_string()) top.fail(at, "an effect name", e[k]);
+      const std::string name = e[k].get<std::string>();
+      bool found = false;
+      for (const auto& [n, member] : effectTable())
+        if (n == name) s.effects.*member = true, found = true;
+      if (!found)
+        throw SceneError(file + ": " + at + ": unknown effect '" + name + "' (did you mean '" +
+                         nearest(name, names) + "'?)");
+    }
+  }
+  if (top.has("water")) {
+    Fields w(top.raw("water"), "water", file);
+    const json& blocks = w.array("blocks");
+    for (size_t k = 0; k < blocks.size(); ++k) {
+      Fields b(blocks[k], "water.blocks[" + std::to_string(k) + "]", file);
+      WaterBlock wb{b.vec3("min"), b.vec3("max")};
+      b.finish();
+      for (int a = 0; a < 3; ++a)
+        if (!(wb.max[a] > wb.min[a]))
+          throw SceneError(file + ": water.blocks[" + std::to_string(k) +
+                           "]: max must exceed min on every axis");
+      s.blocks.push_back(wb);
+    }
+    const json& marks = w.array("sediment");
+    for (size_t k = 0; k < marks.size(); ++k) {
+      Fields m(marks[k], "water.sediment[" + std::to_string(k) + "]", file);
+      SedimentMark sm{m.vec3("position"), m.number("c", 0, 0, s.params.c_max, true)};
+      m.finish();
+      s.sediment.push_back(sm);
+    }
+    w.finish();
+  }
+  const json& sources = top.array("sources");
+  for (size_t k = 0; k < sources.size(); ++k) {
+    Fields f(sources[k], "sources[" + std::to_string(k) + "]", file);
+    Source src;
+    src.center = f.vec3("position");
+    src.radius = f.number("radius", 0, 1e-9, kBig, true);
+    src.direction = f.vec3("direction");
+    if (src.direction.norm() == 0)
+      throw SceneError(file + ": " + f.at("direction") + ": must not be the zero vector");
+    src.rate = f.number("rate", 0, 1e-12, 1e6, true);
+    src.start = f.number("start", 0, 0, 1e9);
+    if (f.has("stop") && !f.raw("stop").is_null())
+      src.stop = f.number("stop", 0, src.start, 1e9);
+    f.finish();
+    s.sources.push_back(src);
+  }
+  const json& sinks = top.array("sinks");
+  for (size_t k = 0; k < sinks.size(); ++k) {
+    Fields f(sinks[k], "sinks[" + std::to_string(k) + "]", file);
+    Sink sk{f.vec3("min"), f.vec3("max")};
+    f.finish();
+    s.sinks.push_back(sk);
+  }
+  if (top.has("built")) top.raw("built");  // written by sceneToJson for people; not read back
+  top.finish();
+  // The water the scene asks for must fit in memory: estimate before allocating.
+  double particles = 0;
+  const double ds = s.params.spacing;
+  for (const WaterBlock& b : s.blocks) {
+    Eigen::Vector3d n = ((b.max - b.min) / ds).array().round();
+    particles += n.x() * n.y() * n.z();
+  }
+  if (particles > 5e7) {
+    char msg[200];
+    std::snprintf(msg, sizeof msg,
+                  "%s: water.blocks: %.3g particles at spacing %g m (about %.0f GB) is more than "
+                  "the 5e7 this build allows",
+                  file.c_str(), particles, ds, particles * 500 / 1e9);
+    throw SceneError(msg);
+  }
+  return s;
+}
+
+SceneSpec loadSceneFile(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw SceneError(path + ": cannot open the scene file");
+  json j;
+  try {
+    j = json::parse(in);
+  } catch (const json::parse_error& e) {
+    throw SceneError(path + ": not valid JSON: " + e.what());
+  }
+  return specFromJson(j, path);
 }
 
 }  // namespace scour

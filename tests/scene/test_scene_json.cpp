@@ -1,0 +1,69 @@
+// Scene files: every preset serialises and parses back to the identical scene, a scene file runs
+// the same as its preset, and the reader refuses what it does not know with the field's path.
+#include <catch2/catch.hpp>
+
+#include "scene/scene_json.h"
+
+using namespace scour;
+using nlohmann::json;
+
+TEST_CASE("every preset round-trips through its JSON", "[scene]") {
+  for (const PresetInfo& p : presetList()) {
+    INFO(p.name);
+    Scene a = makePreset(p.name, 0.5);
+    json ja = sceneToJson(a);
+    json spec = ja;
+    spec.erase("built");
+    Scene b = buildScene(specFromJson(spec, std::string(p.name) + ".json"));
+    json jb = sceneToJson(b);
+    CHECK(ja == jb);
+    CHECK(a.desc.particles == b.desc.particles);
+    CHECK(a.desc.terrain.heights() == b.desc.terrain.heights());
+    CHECK(a.desc.concentration == b.desc.concentration);
+    // The same state after a few steps.
+    World wa(a.desc), wb(b.desc);
+    for (int k = 0; k < 5; ++k) wa.step(), wb.step();
+    CHECK(wa.stateHash() == wb.stateHash());
+  }
+}
+
+TEST_CASE("the reader names the field, what it expected and what it found", "[scene]") {
+  json base = sceneToJson(makePreset("default", 0.3));
+  base.erase("built");
+  auto error = [&](const std::function<void(json&)>& edit) {
+    json j = base;
+    edit(j);
+    try {
+      specFromJson(j, "x.json");
+    } catch (const SceneError& e) {
+      return std::string(e.what());
+    }
+    return std::string("(accepted)");
+  };
+  CHECK(error([](json& j) { j["sources"][0]["rate"] = -1; }) ==
+        "x.json: sources[0].rate: expected a finite number in [1e-12, 1e+06], found -1");
+  CHECK(error([](json& j) { j["sources"][0]["rate"] = "fast"; }) ==
+        "x.json: sources[0].rate: expected a number, found \"fast\"");
+  CHECK_THAT(error([](json& j) { j["sources"][0]["raet"] = 1; }),
+             Catch::Contains("sources[0].raet: unknown key (did you mean 'rate'?)"));
+  CHECK_THAT(error([](json& j) { j["params"]["erosion"]["k_esp"] = 1; }),
+             Catch::Contains("params.erosion.k_esp: unknown key (did you mean 'k_eps'?)"));
+  CHECK_THAT(error([](json& j) { j["params"]["fluid"]["spacing"] = -0.1; }),
+             Catch::Contains("params.fluid.spacing") && Catch::Contains("outside the valid range"));
+  CHECK_THAT(error([](json& j) { j["effects"].push_back("erosoin"); }),
+             Catch::Contains("effects[6]: unknown effect 'erosoin' (did you mean 'erosion'?)"));
+  CHECK_THAT(error([](json& j) { j["terrain"]["kind"] = "volcano"; }),
+             Catch::Contains("terrain.kind: expected one of flat, valley, rolling"));
+  CHECK_THAT(error([](json& j) { j["water"]["blocks"][0]["max"] = json::array({1, 2}); }),
+             Catch::Contains("water.blocks[0].max: expected an array of 3 numbers"));
+  CHECK_THAT(error([](json& j) { j["water"]["blocks"][0]["max"][1] = -5; }),
+             Catch::Contains("water.blocks[0]: max must exceed min on every axis"));
+  CHECK_THAT(error([](json& j) { j.erase("version"); }),
+             Catch::Contains("version: required field is missing"));
+  CHECK_THAT(error([](json& j) { j["version"] = 2; }), Catch::Contains("version: expected"));
+  CHECK_THAT(error([](json& j) { j["params"]["fluid"]["spacing"] = 1e-4; }),
+             Catch::Contains("water.blocks") && Catch::Contains("particles at spacing"));
+  CHECK_THAT(error([](json& j) { j["sources"][0]["direction"] = json::array({0, 0, 0}); }),
+             Catch::Contains("sources[0].direction: must not be the zero vector"));
+  CHECK(error([](json&) {}) == "(accepted)");
+}
