@@ -105,6 +105,14 @@ std::vector<ParamInfo> makeTable() {
   };
 }
 
+std::string formatRange(const ParamInfo& i) {
+  char buf[128];
+  std::snprintf(buf, sizeof buf, "[%g, %g]", i.min, i.max);
+  return buf;
+}
+
+}  // namespace
+
 size_t editDistance(std::string_view a, std::string_view b) {
   std::vector<size_t> row(b.size() + 1);
   for (size_t j = 0; j <= b.size(); ++j) row[j] = j;
@@ -119,14 +127,6 @@ size_t editDistance(std::string_view a, std::string_view b) {
   }
   return row[b.size()];
 }
-
-std::string formatRange(const ParamInfo& i) {
-  char buf[128];
-  std::snprintf(buf, sizeof buf, "[%g, %g]", i.min, i.max);
-  return buf;
-}
-
-}  // namespace
 
 const std::vector<ParamInfo>& paramTable() {
   static const std::vector<ParamInfo> table = makeTable();

@@ -119,6 +119,8 @@ const std::vector<ParamInfo>& paramTable();
 
 /// Looks up a key; nullptr if unknown.
 const ParamInfo* findParam(std::string_view key);
+/// Levenshtein distance, for "did you mean" suggestions.
+size_t editDistance(std::string_view a, std::string_view b);
 /// The valid key closest to `key` by edit distance (for "did you mean" messages).
 std::string nearestParamKey(std::string_view key);
 /// Sets a parameter from text. Returns an empty string on success, else a message naming the key.

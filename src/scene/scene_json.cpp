@@ -22,26 +22,11 @@ const std::vector<std::pair<std::string, bool Effects::*>>& effectTable() {
   return t;
 }
 
-size_t distance(const std::string& a, const std::string& b) {
-  std::vector<size_t> row(b.size() + 1);
-  for (size_t k = 0; k <= b.size(); ++k) row[k] = k;
-  for (size_t i = 1; i <= a.size(); ++i) {
-    size_t diag = row[0];
-    row[0] = i;
-    for (size_t k = 1; k <= b.size(); ++k) {
-      size_t up = row[k];
-      row[k] = std::min({row[k] + 1, row[k - 1] + 1, diag + (a[i - 1] == b[k - 1] ? 0 : 1)});
-      diag = up;
-    }
-  }
-  return row[b.size()];
-}
-
 std::string nearest(const std::string& key, const std::vector<std::string>& valid) {
   std::string best;
   size_t bestD = SIZE_MAX;
   for (const auto& v : valid)
-    if (size_t d = distance(key, v); d < bestD) bestD = d, best = v;
+    if (size_t d = editDistance(key, v); d < bestD) bestD = d, best = v;
   return best;
 }
 
