@@ -53,12 +53,16 @@ Scene buildScene(const SceneSpec& spec) {
   const double ds = spec.params.spacing;
   const double rhoG = spec.params.rest_density * spec.params.gravity;
   for (const WaterBlock& b : spec.blocks) {
-    Eigen::Vector3i n = ((b.max - b.min) / ds).array().round().cast<int>();
-    const double top = b.min.y() + n.y() * ds;
+    // Whole cells that fit in the box (never more, so no particle starts inside a wall next to
+    // it), centred in it.
+    const Eigen::Vector3d extent = b.max - b.min;
+    const Eigen::Vector3i n = (extent / ds + Eigen::Vector3d::Constant(1e-6)).array().floor().cast<int>();
+    const Eigen::Vector3d lo = b.min + 0.5 * (extent - ds * n.cast<double>());
+    const double top = lo.y() + n.y() * ds;
     for (int k = 0; k < n.z(); ++k)
       for (int j = 0; j < n.y(); ++j)
         for (int i = 0; i < n.x(); ++i) {
-          Eigen::Vector3d x = b.min + ds * Eigen::Vector3d(i + 0.5, j + 0.5, k + 0.5);
+          Eigen::Vector3d x = lo + ds * Eigen::Vector3d(i + 0.5, j + 0.5, k + 0.5);
           d.particles.push_back(x.cast<float>());
           d.pressure.push_back(float(rhoG * (top - x.y())));  // at rest: hydrostatic
         }

@@ -66,9 +66,9 @@ SceneSpec presetSpec(const std::string& name, double scale = 1.0, long particles
 
 /// Builds the heightfield of a terrain spec.
 Heightfield buildTerrain(const TerrainSpec& t);
-/// Builds the engine's description: water blocks filled on a cubic lattice of spacing Δs (each
-/// cell centre, at hydrostatic pressure below the block's top), sediment marks on the nearest
-/// particle.
+/// Builds the engine's description: water blocks filled on a cubic lattice of spacing Δs (the
+/// whole cells that fit, centred in the block, at hydrostatic pressure below their top), sediment
+/// marks on the nearest particle.
 Scene buildScene(const SceneSpec& spec);
 
 /// presetSpec + buildScene.

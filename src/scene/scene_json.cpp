@@ -337,7 +337,7 @@ SceneSpec specFromJson(const json& j, const std::string& file) {
   double particles = 0;
   const double ds = s.params.spacing;
   for (const WaterBlock& b : s.blocks) {
-    Eigen::Vector3d n = ((b.max - b.min) / ds).array().round();
+    Eigen::Vector3d n = ((b.max - b.min) / ds).array().floor();
     particles += n.x() * n.y() * n.z();
   }
   if (particles > 5e7) {
