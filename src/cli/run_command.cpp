@@ -1,6 +1,8 @@
 #include <omp.h>
 #include <unistd.h>
 
+#include <algorithm>
+
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -70,6 +72,7 @@ struct RunOptions {
   std::string out;
   int threads = 0;
   long particlesEvery = 0;
+  long metricsEvery = 10;
   double scale = 1.0;
   std::vector<std::string> sets;
 };
@@ -105,24 +108,61 @@ int runScene(const RunOptions& o) {
 
   auto start = std::chrono::steady_clock::now();
   auto lastReport = start;
+  const bool tty = ::isatty(2);
+  // metrics.csv: one row every K steps (and at step 0), cumulative pass seconds; written whole
+  // at the end, through a temporary file.
+  std::ostringstream metrics;
+  metrics << "step,time_s,dt_s,particles,max_speed_m_s,terrain_m3,suspended_m3,removed_m3,"
+             "soil_relative_error";
+  for (size_t p = 0; p < size_t(Pass::kCount); ++p) metrics << "," << passName(Pass(p)) << "_s";
+  metrics << "\n";
+  auto metricsRow = [&](double dt, double maxSpeed) {
+    const SoilBudget soil = world->soilBudget();
+    metrics << world->steps() << "," << std::setprecision(9) << world->time() << "," << dt << ","
+            << world->fluid().size() << "," << maxSpeed << "," << std::setprecision(15)
+            << soil.terrain << "," << soil.suspended << "," << soil.removed << ","
+            << soil.relativeError() << std::setprecision(6);
+    for (size_t p = 0; p < size_t(Pass::kCount); ++p) metrics << "," << world->passSeconds()[p];
+    metrics << "\n";
+  };
+  metricsRow(0.0, 0.0);
+  auto progress = [&](bool last) {
+    const double done = o.steps > 0 ? double(world->steps()) / double(o.steps) : world->time() / o.time;
+    const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    const double eta = done > 0 ? elapsed * (1 - done) / done : 0;
+    char line[200];
+    std::snprintf(line, sizeof line, "step %ld  t = %.4g s  particles %zu  %3.0f%%  ETA %.0f s",
+                  world->steps(), world->time(), world->fluid().size(), 100 * done, eta);
+    if (tty) {
+      const int width = 30, filled = int(done * width + 0.5);
+      std::cerr << "\r[" << std::string(size_t(std::clamp(filled, 0, width)), '#')
+                << std::string(size_t(width - std::clamp(filled, 0, width)), ' ') << "] " << line
+                << (last ? "\n" : "") << std::flush;
+    } else if (!last) {
+      std::cerr << line << "\n";
+    }
+  };
   if (o.particlesEvery > 0) writeParticlesPly(dir / plyName(0), world->fluid(), world->params().particleVolume(), 0.0);
   std::string failure;
   try {
     while (o.steps > 0 ? world->steps() < o.steps : world->time() < o.time - 1e-12) {
-      world->step();
+      const StepStats st = world->step();
       if (o.particlesEvery > 0 && world->steps() % o.particlesEvery == 0)
         writeParticlesPly(dir / plyName(world->steps()), world->fluid(),
                           world->params().particleVolume(), world->time());
+      if (world->steps() % o.metricsEvery == 0) metricsRow(st.dt, st.max_speed);
       auto now = std::chrono::steady_clock::now();
-      if (now - lastReport > std::chrono::seconds(5)) {
+      // A terminal gets a live bar; a log gets one plain line every few seconds.
+      if (now - lastReport > (tty ? std::chrono::milliseconds(200) : std::chrono::milliseconds(5000))) {
         lastReport = now;
-        std::cerr << "step " << world->steps() << "  t = " << world->time() << " s  particles "
-                  << world->fluid().size() << "\n";
+        progress(false);
       }
     }
   } catch (const InvariantViolation& e) {
     failure = e.what();
   }
+  if (tty) progress(true);
+  writeAtomically(dir / "metrics.csv", [&](std::ostream& out) { out << metrics.str(); });
   double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
   json summary;
@@ -200,6 +240,8 @@ Command addRunCommand(CLI::App& app) {
   c->add_option("--particles-every", o->particlesEvery, "Write particles_<step>.ply every K steps")
       ->check(kPositive);
   c->add_option("--scale", o->scale, "Scale the preset's particle count")->check(kPositive);
+  c->add_option("--metrics-every", o->metricsEvery, "Write a metrics.csv row every K steps (default 10)")
+      ->check(kPositive);
   c->add_option("--set", o->sets, "Override a parameter: key=value (repeatable)");
   return [o, steps, time] {
     if (steps->count() == 0 && time->count() == 0)

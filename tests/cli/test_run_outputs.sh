@@ -41,6 +41,13 @@ assert os.path.getsize(os.path.join(d, "height.r32")) == 4 * s["exports"]["heigh
 for k in ["terrain_m3", "suspended_m3", "removed_m3", "initial_m3", "relative_error"]:
     assert k in s["soil"], k
 assert "c_min" in s["invariants"] and "c_max" in s["invariants"]
+rows = open(os.path.join(d, "metrics.csv")).read().splitlines()
+head = rows[0].split(",")
+assert head[:9] == ["step", "time_s", "dt_s", "particles", "max_speed_m_s", "terrain_m3", "suspended_m3", "removed_m3", "soil_relative_error"], head
+assert "density_s" in head and "neighbor_search_s" in head
+assert [int(r.split(",")[0]) for r in rows[1:]] == [0, 10, 20], rows
+assert all(len(r.split(",")) == len(head) for r in rows)
+assert float(rows[-1].split(",")[1]) == s["sim_time_s"] or abs(float(rows[-1].split(",")[1]) - s["sim_time_s"]) < 1e-8
 print("run outputs ok")
 PY
 "$scour" bench dambreak --steps 3 --warmup 1 --threads 1 --json > "$tmp/bench.json"
