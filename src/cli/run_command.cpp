@@ -59,7 +59,11 @@ Scene loadScene(const std::string& name, double scale, long particles,
     std::string err = setParam(spec.params, kv.substr(0, eq), kv.substr(eq + 1));
     if (!err.empty()) throw InputError("--set: " + err);
   }
-  return buildScene(spec);
+  try {
+    return buildScene(spec);
+  } catch (const TerrainError& e) {
+    throw InputError(std::string("terrain: ") + e.what());
+  }
 }
 
 namespace {

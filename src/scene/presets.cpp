@@ -1,6 +1,9 @@
 #include "scene/presets.h"
 
+#include <stb_image.h>
+
 #include <cmath>
+#include <fstream>
 #include <limits>
 #include <stdexcept>
 
@@ -19,10 +22,98 @@ const std::vector<PresetInfo>& presetList() {
   return list;
 }
 
+namespace {
+
+// A greyscale image as doubles, row-major (rows along +z).
+struct Gray {
+  int w = 0, h = 0;
+  std::vector<double> v;
+};
+
+Gray readHeightmap(const TerrainSpec& t) {
+  Gray g;
+  const std::string& f = t.file;
+  const bool raw = f.size() > 4 && f.substr(f.size() - 4) == ".r32";
+  constexpr long long kMaxPixels = 1LL << 27;  // 134 M pixels: 1 GB of doubles
+  if (raw) {
+    if (t.raw_width < 2 || t.raw_height < 2)
+      throw TerrainError(f + ": a .r32 heightmap needs terrain.raw_width and raw_height ≥ 2");
+    if (1LL * t.raw_width * t.raw_height > kMaxPixels)
+      throw TerrainError(f + ": " + std::to_string(t.raw_width) + " × " +
+                         std::to_string(t.raw_height) + " pixels is more than this build reads");
+    std::ifstream in(f, std::ios::binary);
+    if (!in) throw TerrainError(f + ": cannot open the heightmap");
+    std::vector<float> px(size_t(t.raw_width) * t.raw_height);
+    in.read(reinterpret_cast<char*>(px.data()), std::streamsize(px.size() * sizeof(float)));
+    if (in.gcount() != std::streamsize(px.size() * sizeof(float)))
+      throw TerrainError(f + ": holds fewer than raw_width × raw_height float32 values");
+    g.w = t.raw_width, g.h = t.raw_height;
+    g.v.assign(px.begin(), px.end());
+  } else {
+    int w = 0, h = 0, comp = 0;
+    if (!stbi_info(f.c_str(), &w, &h, &comp)) {
+      std::ifstream probe(f);
+      throw TerrainError(f + (probe ? ": not a readable image (" + std::string(stbi_failure_reason()) + ")"
+                                    : ": cannot open the heightmap"));
+    }
+    if (comp != 1)
+      throw TerrainError(f + ": expected a greyscale image, found " + std::to_string(comp) +
+                         " channels");
+    if (1LL * w * h > kMaxPixels)
+      throw TerrainError(f + ": " + std::to_string(w) + " × " + std::to_string(h) +
+                         " pixels is more than this build reads");
+    g.w = w, g.h = h;
+    g.v.resize(size_t(w) * h);
+    if (stbi_is_16_bit(f.c_str())) {
+      stbi_us* px = stbi_load_16(f.c_str(), &w, &h, &comp, 1);
+      if (!px) throw TerrainError(f + ": cannot decode: " + stbi_failure_reason());
+      for (size_t i = 0; i < g.v.size(); ++i) g.v[i] = px[i];
+      stbi_image_free(px);
+    } else {
+      stbi_uc* px = stbi_load(f.c_str(), &w, &h, &comp, 1);
+      if (!px) throw TerrainError(f + ": cannot decode: " + stbi_failure_reason());
+      for (size_t i = 0; i < g.v.size(); ++i) g.v[i] = px[i];
+      stbi_image_free(px);
+    }
+  }
+  for (double x : g.v)
+    if (!std::isfinite(x)) throw TerrainError(f + ": holds a non-finite height");
+  return g;
+}
+
+void fillFromHeightmap(const TerrainSpec& t, Heightfield& hf) {
+  const Gray g = readHeightmap(t);
+  const int cw = t.crop_w > 0 ? t.crop_w : g.w - t.crop_x, ch = t.crop_h > 0 ? t.crop_h : g.h - t.crop_z;
+  if (t.crop_x < 0 || t.crop_z < 0 || cw < 2 || ch < 2 || t.crop_x + cw > g.w || t.crop_z + ch > g.h)
+    throw TerrainError(t.file + ": the crop [" + std::to_string(t.crop_x) + ", " +
+                       std::to_string(t.crop_z) + ", " + std::to_string(cw) + ", " +
+                       std::to_string(ch) + "] does not fit the " + std::to_string(g.w) + " × " +
+                       std::to_string(g.h) + " image");
+  // Bilinear resampling of the crop onto the grid.
+  for (int k = 0; k < hf.nz(); ++k)
+    for (int i = 0; i < hf.nx(); ++i) {
+      const double u = double(i) / (hf.nx() - 1) * (cw - 1), w = double(k) / (hf.nz() - 1) * (ch - 1);
+      const int i0 = std::min(int(u), cw - 2), k0 = std::min(int(w), ch - 2);
+      const double fu = u - i0, fw = w - k0;
+      auto at = [&](int a, int b) { return g.v[size_t(t.crop_z + k0 + b) * g.w + t.crop_x + i0 + a]; };
+      hf.at(i, k) = (1 - fw) * ((1 - fu) * at(0, 0) + fu * at(1, 0)) + fw * ((1 - fu) * at(0, 1) + fu * at(1, 1));
+    }
+  // Scale to the range the scene asks for.
+  const double lo = hf.minHeight(), hi = hf.maxHeight(), span = hi > lo ? hi - lo : 1.0;
+  for (double& h : hf.heights()) h = t.height_min + (h - lo) / span * (t.height_max - t.height_min);
+}
+
+}  // namespace
+
 Heightfield buildTerrain(const TerrainSpec& t) {
   const int nx = std::max(2, int(std::round(t.length_x / t.cell)) + 1);
   const int nz = std::max(2, int(std::round(t.length_z / t.cell)) + 1);
   Heightfield hf(nx, nz, t.length_x / (nx - 1), t.length_z / (nz - 1));
+  if (t.kind == "heightmap") {
+    fillFromHeightmap(t, hf);
+    for (double& h : hf.heights()) h += t.base;
+    return hf;
+  }
   for (int k = 0; k < nz; ++k)
     for (int i = 0; i < nx; ++i) {
       const double x = i * hf.dx(), z = k * hf.dz();

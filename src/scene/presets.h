@@ -7,6 +7,7 @@
 //
 // Each preset is defined once here and shared by `scour run`, `scour bench` and the tests.
 
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -14,15 +15,28 @@
 
 namespace scour {
 
-/// A procedural terrain over [0, length_x] × [0, length_z].
+/// A terrain over [0, length_x] × [0, length_z]: procedural, or a heightmap image.
 struct TerrainSpec {
-  std::string kind = "flat";  ///< flat | valley | rolling
+  std::string kind = "flat";  ///< flat | valley | rolling | heightmap
   double length_x = 1.0, length_z = 1.0;  ///< extent [m]
   double cell = 0.05;                    ///< grid spacing (rounded to fit the extent) [m]
   double slope = 0.0;      ///< valley: drop per metre along +x [-]
   double side_rise = 0.0;  ///< valley: height of the sides above the axis [m]
   double amplitude = 0.0;  ///< rolling: height of the bumps [m]
   double base = 0.0;       ///< height added everywhere [m]
+  // heightmap: a greyscale PNG (8 or 16 bit) or raw float32 (.r32, needs raw_width/raw_height),
+  // cropped to [crop_x, crop_x + crop_w) × [crop_z, crop_z + crop_h) pixels (0 = whole image),
+  // resampled bilinearly to the grid, and scaled so its lowest point is height_min and its
+  // highest height_max. Image rows run along +z, columns along +x.
+  std::string file;          ///< resolved path (relative paths are taken from the scene file)
+  double height_min = 0.0, height_max = 1.0;  ///< [m]
+  int crop_x = 0, crop_z = 0, crop_w = 0, crop_h = 0;  ///< [pixels]
+  int raw_width = 0, raw_height = 0;  ///< .r32 only [pixels]
+};
+
+/// Thrown for a heightmap that cannot be used (missing, not greyscale, too large, …).
+struct TerrainError : std::runtime_error {
+  using std::runtime_error::runtime_error;
 };
 
 struct WaterBlock {
@@ -64,7 +78,7 @@ const std::vector<PresetInfo>& presetList();
 /// std::invalid_argument for an unknown name, naming the valid ones.
 SceneSpec presetSpec(const std::string& name, double scale = 1.0, long particles = 0);
 
-/// Builds the heightfield of a terrain spec.
+/// Builds the heightfield of a terrain spec. Throws TerrainError for a bad heightmap.
 Heightfield buildTerrain(const TerrainSpec& t);
 /// Builds the engine's description: water blocks filled on a cubic lattice of spacing Δs (the
 /// whole cells that fit, centred in the block, at hydrostatic pressure below their top), sediment

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 
 namespace scour {
@@ -163,6 +164,13 @@ json sceneToJson(const Scene& scene) {
                   {"side_rise", t.side_rise},
                   {"amplitude", t.amplitude},
                   {"base", t.base}};
+  if (t.kind == "heightmap") {
+    j["terrain"]["file"] = t.file;
+    j["terrain"]["height_min"] = t.height_min;
+    j["terrain"]["height_max"] = t.height_max;
+    j["terrain"]["crop"] = {t.crop_x, t.crop_z, t.crop_w, t.crop_h};
+    if (t.raw_width > 0) j["terrain"]["raw_size"] = {t.raw_width, t.raw_height};
+  }
   j["domain"] = {{"walls", s.domain.walls}};
   const Effects& e = s.effects;
   json effects = json::array();
@@ -245,7 +253,7 @@ SceneSpec specFromJson(const json& j, const std::string& file) {
   {
     const json terrain = top.has("terrain") ? top.raw("terrain") : json::object();
     Fields t(terrain, "terrain", file);
-    s.terrain.kind = t.text("kind", "flat", {"flat", "valley", "rolling"});
+    s.terrain.kind = t.text("kind", "flat", {"flat", "valley", "rolling", "heightmap"});
     s.terrain.length_x = t.number("length_x", 1.0, 1e-6, kBig);
     s.terrain.length_z = t.number("length_z", 1.0, 1e-6, kBig);
     s.terrain.cell = t.number("cell", 0.05, 1e-6, kBig);
@@ -253,6 +261,35 @@ SceneSpec specFromJson(const json& j, const std::string& file) {
     s.terrain.side_rise = t.number("side_rise", 0.0, -kBig, kBig);
     s.terrain.amplitude = t.number("amplitude", 0.0, -kBig, kBig);
     s.terrain.base = t.number("base", 0.0, -kBig, kBig);
+    if (s.terrain.kind == "heightmap") {
+      std::string f = t.text("file", "");
+      if (f.empty()) throw SceneError(file + ": terrain.file: required for a heightmap terrain");
+      // Relative to the scene file.
+      std::filesystem::path p(f);
+      if (p.is_relative()) p = std::filesystem::path(file).parent_path() / p;
+      s.terrain.file = std::filesystem::absolute(p).lexically_normal().string();
+      s.terrain.height_min = t.number("height_min", 0.0, -kBig, kBig);
+      s.terrain.height_max = t.number("height_max", 1.0, s.terrain.height_min, kBig);
+      if (t.has("crop")) {
+        const json& c = t.raw("crop");
+        if (!c.is_array() || c.size() != 4) t.fail("terrain.crop", "[x, z, width, height] in pixels", c);
+        int* dst[4] = {&s.terrain.crop_x, &s.terrain.crop_z, &s.terrain.crop_w, &s.terrain.crop_h};
+        for (int a = 0; a < 4; ++a) {
+          if (!c[a].is_number_integer() || c[a].get<long>() < 0 || c[a].get<long>() > 1000000)
+            t.fail("terrain.crop[" + std::to_string(a) + "]", "a whole number of pixels ≥ 0", c[a]);
+          *dst[a] = c[a].get<int>();
+        }
+      }
+      if (t.has("raw_size")) {
+        const json& c = t.raw("raw_size");
+        if (!c.is_array() || c.size() != 2 || !c[0].is_number_integer() || !c[1].is_number_integer() ||
+            c[0].get<long>() < 2 || c[1].get<long>() < 2 || c[0].get<long>() > 1000000 ||
+            c[1].get<long>() > 1000000)
+          t.fail("terrain.raw_size", "[width, height] in pixels, each ≥ 2", c);
+        s.terrain.raw_width = c[0].get<int>();
+        s.terrain.raw_height = c[1].get<int>();
+      }
+    }
     t.finish();
     const double cells = (s.terrain.length_x / s.terrain.cell + 1) * (s.terrain.length_z / s.terrain.cell + 1);
     if (cells > 4e7) {
