@@ -195,7 +195,7 @@ SceneSpec dambreak(double scale) {
   p.sound_speed = 20.0;  // > 10 × √(2 g · 2a) ≈ 15 m/s
   p.viscosity = 5e-4;
   const double depth = 6 * p.spacing;
-  s.terrain = {"flat", 10 * a, depth, a / 4};
+  s.terrain = flatTerrain(10 * a, depth, a / 4);
   s.blocks.push_back({{0, 0, 0}, {a, 2 * a, depth}});
   return s;
 }
@@ -207,7 +207,7 @@ SceneSpec hydrostatic(double scale) {
   p.spacing = 0.02 / std::cbrt(scale);
   p.sound_speed = 10.0 * std::sqrt(2.0 * p.gravity * H);
   p.viscosity = 5e-3;  // damps the start-up pressure waves so the column comes to rest
-  s.terrain = {"flat", 0.2, 0.2, 0.05};
+  s.terrain = flatTerrain(0.2, 0.2, 0.05);
   s.blocks.push_back({{0, 0, 0}, {0.2, H, 0.2}});
   return s;
 }
@@ -278,7 +278,7 @@ SceneSpec sedimentLattice(const std::string& name, int nx, int ny, int nz, bool 
   s.effects.settling = settle;
   s.effects.diffusion = !settle;
   const double ds = p.spacing;
-  s.terrain = {"flat", nx * ds, nz * ds, ds};
+  s.terrain = flatTerrain(nx * ds, nz * ds, ds);
   s.blocks.push_back({{0, 0, 0}, {nx * ds, ny * ds, nz * ds}});
   // The marked particle: top centre (settling) or centre (diffusion).
   const int mj = settle ? ny - 1 : ny / 2;

@@ -34,6 +34,15 @@ struct TerrainSpec {
   int raw_width = 0, raw_height = 0;  ///< .r32 only [pixels]
 };
 
+/// A flat terrain of the given extent and grid spacing [m].
+inline TerrainSpec flatTerrain(double length_x, double length_z, double cell) {
+  TerrainSpec t;
+  t.length_x = length_x;
+  t.length_z = length_z;
+  t.cell = cell;
+  return t;
+}
+
 /// Thrown for a heightmap that cannot be used (missing, not greyscale, too large, …).
 struct TerrainError : std::runtime_error {
   using std::runtime_error::runtime_error;

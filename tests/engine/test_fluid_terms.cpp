@@ -38,7 +38,7 @@ TEST_CASE("surface tension pulls surface particles inward, in proportion to κ",
     spec.params.gravity = 0.0;
     spec.params.surface_tension = kappa;
     spec.effects.surface_tension = kappa > 0;
-    spec.terrain = {"flat", 0.4, 0.4, 0.05};
+    spec.terrain = flatTerrain(0.4, 0.4, 0.05);
     spec.blocks.push_back({{0.15, 0.15, 0.15}, {0.25, 0.25, 0.25}});
     World w(buildScene(spec).desc);
     return w.fluid();
