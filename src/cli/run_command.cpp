@@ -77,6 +77,7 @@ struct RunOptions {
   int threads = 0;
   long particlesEvery = 0;
   long metricsEvery = 10;
+  bool mesh = false;
   double scale = 1.0;
   std::vector<std::string> sets;
 };
@@ -204,6 +205,7 @@ int runScene(const RunOptions& o) {
   auto [lo, hi] = writeHeightPng16(dir / "height.png", world->terrain());
   writeHeightRaw(dir / "height.r32", world->terrain());
   const double changeScale = writeErosionPng(dir / "erosion.png", world->terrain(), world->heightChange());
+  if (o.mesh) writeTerrainObj(dir / "mesh.obj", world->terrain());
   const Heightfield& hf = world->terrain();
   summary["exports"] = {
       {"height_png",
@@ -246,6 +248,7 @@ Command addRunCommand(CLI::App& app) {
   c->add_option("--scale", o->scale, "Scale the preset's particle count")->check(kPositive);
   c->add_option("--metrics-every", o->metricsEvery, "Write a metrics.csv row every K steps (default 10)")
       ->check(kPositive);
+  c->add_flag("--mesh", o->mesh, "Also write the final terrain as mesh.obj (with normals)");
   c->add_option("--set", o->sets, "Override a parameter: key=value (repeatable)");
   return [o, steps, time] {
     if (steps->count() == 0 && time->count() == 0)

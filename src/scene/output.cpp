@@ -1,6 +1,8 @@
 #include "scene/output.h"
 
 #include <png.h>
+
+#include <Eigen/Geometry>
 #include <unistd.h>
 
 #include <cmath>
@@ -103,6 +105,37 @@ void writeHeightRaw(const std::filesystem::path& path, const Heightfield& hf) {
     for (double h : hf.heights()) {
       float v = float(h);
       out.write(reinterpret_cast<const char*>(&v), sizeof v);
+    }
+  });
+}
+
+void writeTerrainObj(const std::filesystem::path& path, const Heightfield& hf) {
+  const int nx = hf.nx(), nz = hf.nz();
+  std::vector<Eigen::Vector3d> normal(size_t(nx) * nz, Eigen::Vector3d::Zero());
+  for (int t = 0; t < hf.triangleCount(); ++t) {
+    auto c = hf.triangleCorners(t);
+    Eigen::Vector3d n = (c[2] - c[0]).cross(c[1] - c[0]);  // |n| = 2 × area, pointing up
+    for (auto [i, k] : hf.triangleVertices(t)) normal[size_t(k) * nx + i] += n;
+  }
+  writeAtomically(path, [&](std::ostream& out) {
+    out << "# Scour terrain, " << nx << " x " << nz << " vertices, y up\n" << std::setprecision(9);
+    for (int k = 0; k < nz; ++k)
+      for (int i = 0; i < nx; ++i)
+        out << "v " << hf.x0() + i * hf.dx() << " " << hf.at(i, k) << " " << hf.z0() + k * hf.dz() << "\n";
+    for (const Eigen::Vector3d& n : normal) {
+      Eigen::Vector3d u = n.normalized();
+      out << "vn " << u.x() << " " << u.y() << " " << u.z() << "\n";
+    }
+    for (int t = 0; t < hf.triangleCount(); ++t) {
+      auto v = hf.triangleVertices(t);
+      // Engine order is clockwise seen from above (+y); OBJ wants counter-clockwise.
+      const int order[3] = {0, 2, 1};
+      out << "f";
+      for (int a : order) {
+        const long id = long(v[a][1]) * nx + v[a][0] + 1;
+        out << " " << id << "//" << id;
+      }
+      out << "\n";
     }
   });
 }

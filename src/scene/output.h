@@ -33,6 +33,11 @@ std::pair<double, double> writeHeightPng16(const std::filesystem::path& path, co
 /// Raw float32, little-endian, row-major (rows of nx values, nz rows; same order as the PNG).
 void writeHeightRaw(const std::filesystem::path& path, const Heightfield& hf);
 
+/// The terrain as a Wavefront OBJ mesh: one vertex per grid point (x, h, z) with its normal (the
+/// area-weighted mean of the adjacent triangles'), two triangles per cell as in the engine,
+/// counter-clockwise seen from above.
+void writeTerrainObj(const std::filesystem::path& path, const Heightfield& hf);
+
 /// False-colour map of the height change since the start, like the paper's Figures 1 and 8:
 /// white unchanged, red erosion, blue deposition, full colour at |Δh| = scale (symmetric).
 /// 8-bit RGB PNG; returns the scale used [m] (the largest |Δh|, or 0 if nothing moved).

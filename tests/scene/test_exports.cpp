@@ -9,6 +9,9 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <sstream>
+
+#include <Eigen/Geometry>
 
 #include "scene/output.h"
 
@@ -96,5 +99,48 @@ TEST_CASE("particle PLY carries the sediment concentration", "[exports]") {
   CHECK(row[0] == 1.0f);
   CHECK(row[5] == 6.0f);
   CHECK(row[6] == Approx(0.25));
+  fs::remove_all(d);
+}
+
+TEST_CASE("terrain OBJ: vertices, normals and upward faces", "[exports]") {
+  Heightfield hf(5, 4, 0.5, 0.25);
+  for (int k = 0; k < 4; ++k)
+    for (int i = 0; i < 5; ++i) hf.at(i, k) = 0.2 * i * 0.5 - 0.4 * k * 0.25;  // a plane
+  fs::path d = tempDir();
+  writeTerrainObj(d / "m.obj", hf);
+  std::ifstream in(d / "m.obj");
+  std::vector<Eigen::Vector3d> v, n;
+  std::vector<std::array<int, 3>> f;
+  for (std::string line; std::getline(in, line);) {
+    std::istringstream s(line);
+    std::string tag;
+    s >> tag;
+    if (tag == "v" || tag == "vn") {
+      Eigen::Vector3d p;
+      s >> p.x() >> p.y() >> p.z();
+      (tag == "v" ? v : n).push_back(p);
+    } else if (tag == "f") {
+      std::array<int, 3> ids;
+      for (int& id : ids) {
+        std::string tok;
+        s >> tok;
+        id = std::stoi(tok.substr(0, tok.find('/')));
+      }
+      f.push_back(ids);
+    }
+  }
+  CHECK(v.size() == 20);
+  CHECK(n.size() == 20);
+  CHECK(f.size() == size_t(hf.triangleCount()));
+  const Eigen::Vector3d plane = Eigen::Vector3d(-0.2, 1.0, 0.4).normalized();
+  for (const auto& u : n) CHECK((u - plane).norm() < 1e-6);
+  double area = 0;
+  for (const auto& t : f) {
+    Eigen::Vector3d a = v[size_t(t[0] - 1)], b = v[size_t(t[1] - 1)], c = v[size_t(t[2] - 1)];
+    Eigen::Vector3d fn = (b - a).cross(c - a);
+    CHECK(fn.y() > 0);  // counter-clockwise seen from above
+    area += 0.5 * std::abs(fn.y());
+  }
+  CHECK(area == Approx(2.0 * 0.75));  // projected area of the grid
   fs::remove_all(d);
 }
