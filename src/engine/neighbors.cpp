@@ -54,37 +54,37 @@ void Grid::build(const std::vector<Vec3f>& x, float cell) {
   Vec3f ext = (hi - origin_) / cell;
   dims_ = {int(ext.x()) + 2, int(ext.y()) + 2, int(ext.z()) + 2};
   const size_t cells = size_t(dims_.x()) * dims_.y() * dims_.z();
-  start_.assign(cells + 1, 0);
-  std::vector<uint32_t> cellIdx(n);
+  std::vector<int64_t> cellIdx(n);
 #pragma omp parallel for schedule(static)
   for (size_t i = 0; i < n; ++i) {
     Eigen::Vector3i c = cellOf(x[i]);
-    cellIdx[i] = uint32_t(linear(c.x(), c.y(), c.z()));
+    cellIdx[i] = linear(c.x(), c.y(), c.z());
   }
-  // Counting sort; placing in ascending i keeps each cell's list in particle order.
-  for (size_t i = 0; i < n; ++i) ++start_[cellIdx[i] + 1];
-  for (size_t c = 0; c < cells; ++c) start_[c + 1] += start_[c];
-  sorted_.resize(n);
-  std::vector<uint32_t> fill(start_.begin(), start_.end() - 1);
-  for (size_t i = 0; i < n; ++i) sorted_[fill[cellIdx[i]]++] = uint32_t(i);
+  countingSort(cellIdx, cells, start_, sorted_);
+}
+
+void Grid::countingSort(const std::vector<int64_t>& cellIdx, size_t cells,
+                        std::vector<uint32_t>& start, std::vector<uint32_t>& sorted) {
+  // Placing in ascending index keeps each cell's list in point order; index −1 is left out.
+  start.assign(cells + 1, 0);
+  for (int64_t c : cellIdx)
+    if (c >= 0) ++start[size_t(c) + 1];
+  for (size_t c = 0; c < cells; ++c) start[c + 1] += start[c];
+  sorted.resize(start[cells]);
+  std::vector<uint32_t> fill(start.begin(), start.end() - 1);
+  for (size_t i = 0; i < cellIdx.size(); ++i)
+    if (cellIdx[i] >= 0) sorted[fill[size_t(cellIdx[i])]++] = uint32_t(i);
 }
 
 void Grid::binOther(const std::vector<Vec3f>& y, std::vector<uint32_t>& start,
                     std::vector<uint32_t>& sorted) const {
   const size_t cells = size_t(dims_.x()) * dims_.y() * dims_.z();
-  start.assign(cells + 1, 0);
   std::vector<int64_t> cellIdx(y.size(), -1);
   for (size_t i = 0; i < y.size(); ++i) {
     Eigen::Vector3i c = cellOf(y[i]);
-    if (!inside(c.x(), c.y(), c.z())) continue;
-    cellIdx[i] = linear(c.x(), c.y(), c.z());
-    ++start[cellIdx[i] + 1];
+    if (inside(c.x(), c.y(), c.z())) cellIdx[i] = linear(c.x(), c.y(), c.z());
   }
-  for (size_t c = 0; c < cells; ++c) start[c + 1] += start[c];
-  sorted.resize(start[cells]);
-  std::vector<uint32_t> fill(start.begin(), start.end() - 1);
-  for (size_t i = 0; i < y.size(); ++i)
-    if (cellIdx[i] >= 0) sorted[fill[cellIdx[i]]++] = uint32_t(i);
+  countingSort(cellIdx, cells, start, sorted);
 }
 
 namespace {

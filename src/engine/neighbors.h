@@ -64,6 +64,10 @@ class Grid {
   size_t bytes() const { return (start_.capacity() + sorted_.capacity()) * sizeof(uint32_t); }
 
  private:
+  /// Counting sort of point indices by cell (index −1: not binned) into (start, sorted).
+  static void countingSort(const std::vector<int64_t>& cellIdx, size_t cells,
+                           std::vector<uint32_t>& start, std::vector<uint32_t>& sorted);
+
   float cell_ = 1.0f;
   Vec3f origin_ = Vec3f::Zero();
   Eigen::Vector3i dims_ = Eigen::Vector3i::Ones();
