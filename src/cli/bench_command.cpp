@@ -1,6 +1,8 @@
 #include <omp.h>
 
 #include <algorithm>
+#include <chrono>
+#include <memory>
 #include <cstdio>
 #include <iostream>
 
@@ -22,6 +24,7 @@ struct BenchOptions {
   double scale = 1.0;
   bool json = false;
   bool erosion = false;
+  bool ablation = false;
   std::vector<std::string> sets;
 };
 
@@ -32,9 +35,64 @@ double median(std::vector<double> v) {
   return v.size() % 2 ? v[m] : 0.5 * (v[m - 1] + v[m]);
 }
 
+// Effects off cost nothing: the scene with every effect, with the erosion effects off, and with
+// SPH alone (fluid motion and the scene's friction; no erosion, sources, sinks or rain), stepped
+// in turn so that the machine's drift hits all three alike.
+int ablation(const BenchOptions& o, const Scene& scene) {
+  struct Config {
+    const char* name;
+    Effects fx;
+  };
+  Effects all = scene.desc.effects, noErosion = all, sph;
+  all.erosion = all.settling = all.diffusion = all.deposition = true;
+  noErosion.erosion = noErosion.settling = noErosion.diffusion = noErosion.deposition = false;
+  sph = noErosion;
+  sph.sources = sph.sinks = sph.rain = false;
+  std::vector<Config> configs = {{"all effects", all}, {"erosion off", noErosion}, {"SPH only", sph}};
+  std::vector<std::unique_ptr<World>> worlds;
+  for (const Config& c : configs) {
+    WorldDesc d = scene.desc;
+    d.effects = c.fx;
+    if (c.fx.erosion) d.concentration.assign(d.particles.size(), 0.01);
+    worlds.push_back(std::make_unique<World>(d));
+  }
+  std::vector<std::vector<double>> t(configs.size());
+  try {
+    for (long s = 0; s < o.warmup + o.steps; ++s)
+      for (size_t c = 0; c < configs.size(); ++c) {
+        auto t0 = std::chrono::steady_clock::now();
+        worlds[c]->step();
+        if (s >= o.warmup)
+          t[c].push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+      }
+  } catch (const InvariantViolation& e) {
+    std::cerr << "error: invariant violated at " << e.what() << "\n";
+    return kExitInvariant;
+  }
+  json j;
+  j["scene"] = o.scene;
+  j["particles"] = worlds[0]->fluid().size();
+  j["threads"] = omp_get_max_threads();
+  j["steps"] = o.steps;
+  for (size_t c = 0; c < configs.size(); ++c) j["seconds_per_step"][configs[c].name] = median(t[c]);
+  const double ratio = median(t[1]) / median(t[2]);
+  j["erosion_off_over_sph_only"] = ratio;
+  if (o.json) {
+    std::cout << j.dump(2) << "\n";
+    return kExitOk;
+  }
+  std::printf("scene %s: %zu particles, %d threads, %ld steps each (median seconds per step)\n",
+              o.scene.c_str(), worlds[0]->fluid().size(), omp_get_max_threads(), o.steps);
+  for (size_t c = 0; c < configs.size(); ++c)
+    std::printf("  %-12s %10.6f\n", configs[c].name, median(t[c]));
+  std::printf("erosion off / SPH only = %.3f (1 = an effect that is off costs nothing)\n", ratio);
+  return kExitOk;
+}
+
 int bench(const BenchOptions& o) {
   setThreads(o.threads);
   Scene scene = loadScene(o.scene, o.scale, o.particles, o.sets);
+  if (o.ablation) return ablation(o, scene);
   if (o.erosion) {
     // Every sediment pass at full work: all effects on, and every particle already carrying
     // sediment (so no pair is skipped as empty).
@@ -130,6 +188,8 @@ Command addBenchCommand(CLI::App& app) {
   c->add_flag("--json", o->json, "One JSON object on stdout");
   c->add_flag("--erosion", o->erosion,
               "Turn on erosion, settling, diffusion and deposition, with C = 0.01 everywhere");
+  c->add_flag("--ablation", o->ablation,
+              "Compare all effects, erosion off and SPH only, stepped in turn");
   return [o] { return bench(*o); };
 }
 

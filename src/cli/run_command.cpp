@@ -12,6 +12,7 @@
 #include <sstream>
 
 #include "cli/commands.h"
+#include "scene/checkpoint.h"
 #include "scene/output.h"
 #include "scene/scene_json.h"
 
@@ -80,7 +81,15 @@ struct RunOptions {
   bool mesh = false;
   double scale = 1.0;
   std::vector<std::string> sets;
+  long checkpointEvery = 0;
+  std::string resume;
 };
+
+std::string checkpointName(long step) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "checkpoint_%06ld.ckpt", step);
+  return buf;
+}
 
 std::string plyName(long step) {
   char buf[64];
@@ -97,12 +106,35 @@ json passSecondsJson(const World& w) {
 
 int runScene(const RunOptions& o) {
   setThreads(o.threads);
-  Scene scene = loadScene(o.scene, o.scale, 0, o.sets);
+  Scene scene;
   std::unique_ptr<World> world;
-  try {
-    world = std::make_unique<World>(scene.desc);
-  } catch (const std::invalid_argument& e) {
-    throw InputError(std::string("scene '") + o.scene + "': " + e.what());
+  if (!o.resume.empty()) {
+    // The scene, its overrides and the state all come from the checkpoint.
+    try {
+      const Checkpoint c = readCheckpoint(o.resume);
+      world = std::make_unique<World>(resumeWorld(c, scene));
+    } catch (const CheckpointError& e) {
+      throw InputError(e.what());
+    } catch (const SceneError& e) {
+      throw InputError(e.what());
+    } catch (const TerrainError& e) {
+      throw InputError(o.resume + ": terrain: " + e.what());
+    } catch (const std::invalid_argument& e) {
+      throw InputError(o.resume + ": " + e.what());
+    }
+    if (o.steps > 0 && o.steps <= world->steps())
+      throw InputError("--steps: the checkpoint is at step " + std::to_string(world->steps()) +
+                       "; --steps is the total to reach, so it must be larger");
+    if (o.time > 0 && o.time <= world->time())
+      throw InputError("--time: the checkpoint is at t = " + std::to_string(world->time()) +
+                       " s; --time is the total to reach, so it must be larger");
+  } else {
+    scene = loadScene(o.scene, o.scale, 0, o.sets);
+    try {
+      world = std::make_unique<World>(scene.desc);
+    } catch (const std::invalid_argument& e) {
+      throw InputError(std::string("scene '") + o.scene + "': " + e.what());
+    }
   }
   std::error_code ec;
   fs::create_directories(o.out, ec);
@@ -156,6 +188,8 @@ int runScene(const RunOptions& o) {
         writeParticlesPly(dir / plyName(world->steps()), world->fluid(),
                           world->params().particleVolume(), world->time());
       if (world->steps() % o.metricsEvery == 0) metricsRow(st.dt, st.max_speed);
+      if (o.checkpointEvery > 0 && world->steps() % o.checkpointEvery == 0)
+        writeCheckpoint((dir / checkpointName(world->steps())).string(), scene, *world);
       auto now = std::chrono::steady_clock::now();
       // A terminal gets a live bar; a log gets one plain line every few seconds.
       if (now - lastReport > (tty ? std::chrono::milliseconds(200) : std::chrono::milliseconds(5000))) {
@@ -235,8 +269,8 @@ int runScene(const RunOptions& o) {
 Command addRunCommand(CLI::App& app) {
   auto o = std::make_shared<RunOptions>();
   CLI::App* c = app.add_subcommand("run", "Run a scene and write its outputs");
-  c->add_option("scene", o->scene, "Built-in scene name (see `scour presets`) or a scene file (.json)")
-      ->required();
+  auto* scene = c->add_option("scene", o->scene,
+                              "Built-in scene name (see `scour presets`) or a scene file (.json)");
   c->add_flag("--headless", o->headless, "Run without a window");
   auto* steps = c->add_option("--steps", o->steps, "Number of steps")->check(kPositive);
   auto* time = c->add_option("--time", o->time, "Simulated seconds")->check(kPositive);
@@ -249,10 +283,21 @@ Command addRunCommand(CLI::App& app) {
   c->add_option("--metrics-every", o->metricsEvery, "Write a metrics.csv row every K steps (default 10)")
       ->check(kPositive);
   c->add_flag("--mesh", o->mesh, "Also write the final terrain as mesh.obj (with normals)");
-  c->add_option("--set", o->sets, "Override a parameter: key=value (repeatable)");
-  return [o, steps, time] {
+  auto* sets = c->add_option("--set", o->sets, "Override a parameter: key=value (repeatable)");
+  c->add_option("--checkpoint-every", o->checkpointEvery,
+                "Write checkpoint_<step>.ckpt every K steps (resume with --resume)")
+      ->check(kPositive);
+  auto* resume = c->add_option("--resume", o->resume,
+                               "Continue from a checkpoint (--steps/--time: the total to reach)");
+  resume->excludes(scene);
+  resume->excludes(sets);
+  return [o, steps, time, scene, resume] {
+    if (scene->count() == 0 && resume->count() == 0)
+      throw InputError("run: a scene (name or file) or --resume FILE is required");
     if (steps->count() == 0 && time->count() == 0)
       throw InputError("run: one of --steps or --time is required");
+    if (resume->count() > 0 && o->scale != 1.0)
+      throw InputError("--scale: a resumed run keeps the checkpoint's scene; drop --scale");
     return runScene(*o);
   };
 }

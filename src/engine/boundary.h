@@ -43,6 +43,8 @@ class BoundarySampler {
   static void sampleTriangle(const Heightfield& hf, int tri, double spacing, BoundaryParticles& out);
 
   const std::vector<int>& activeTiles() const { return active_; }
+  /// Sets the active tiles (a restored checkpoint's); ids must be valid and ascending.
+  void setActiveTiles(std::vector<int> tiles) { active_ = std::move(tiles); }
   int tileCount() const { return tilesX_ * tilesZ_; }
 
  private:

@@ -38,6 +38,8 @@ class Grid {
 
   const std::vector<uint32_t>& start() const { return start_; }
   const std::vector<uint32_t>& sorted() const { return sorted_; }
+  /// How many points the last build indexed (indices 0 … count − 1).
+  size_t particleCount() const { return sorted_.size(); }
 
   /// Calls f(j) for every indexed point j in the 27 cells around p (no distance test). Cells
   /// cx−1..cx+1 of one row are consecutive in the linear order, so each of the 9 rows is one

@@ -22,4 +22,19 @@ Emitter::Emitter(const Source& s, double spacing) : src(s) {
   travelled = spacing;  // the first layer is due at the start time
 }
 
+namespace {
+uint64_t splitmix64(uint64_t x) {
+  x += 0x9E3779B97F4A7C15ULL;
+  x = (x ^ (x >> 30)) * 0xBF58476D1CE4E5B9ULL;
+  x = (x ^ (x >> 27)) * 0x94D049BB133111EBULL;
+  return x ^ (x >> 31);
+}
+}  // namespace
+
+std::pair<double, double> RainState::point(uint64_t seed, uint64_t k) {
+  const uint64_t a = splitmix64(seed * 0x632BE59BD9B4E019ULL + 2 * k);
+  const uint64_t b = splitmix64(seed * 0x632BE59BD9B4E019ULL + 2 * k + 1);
+  return {double(a >> 11) * 0x1.0p-53, double(b >> 11) * 0x1.0p-53};
+}
+
 }  // namespace scour

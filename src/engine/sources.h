@@ -11,7 +11,9 @@
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
+#include <cstdint>
 #include <limits>
+#include <utility>
 #include <vector>
 
 namespace scour {
@@ -31,6 +33,31 @@ struct Sink {
     return p.x() >= lo.x() && p.y() >= lo.y() && p.z() >= lo.z() && p.x() <= hi.x() &&
            p.y() <= hi.y() && p.z() <= hi.z();
   }
+};
+
+/// Rain over the rectangle [lo_x, hi_x] × [lo_z, hi_z]: `intensity_mm_h` millimetres of water per
+/// hour fall on it (kept in the unit scene files use, so a scene round-trips exactly). Each particle's volume Δs³ that has accumulated becomes one drop at
+/// a pseudo-random point of the rectangle (counter-based, so a run is reproducible and a
+/// checkpoint needs only the counter), `drop_height` above the terrain, falling at `drop_speed`.
+/// A drop whose place is still occupied is skipped and counted as blocked.
+struct Rain {
+  double lo_x = 0, lo_z = 0, hi_x = 0, hi_z = 0;  ///< [m]
+  double intensity_mm_h = 36.0;                     ///< [mm/h]
+  double drop_height = 0.1;                         ///< [m]
+  double drop_speed = 1.0;                          ///< [m/s]
+  double start = 0.0;                               ///< [s]
+  double stop = std::numeric_limits<double>::infinity();  ///< [s]
+  uint64_t seed = 1;
+};
+
+/// Progress of one rain: volume not yet turned into drops, drops drawn so far.
+struct RainState {
+  Rain rain;
+  double pending = 0.0;  ///< [m³]
+  uint64_t drawn = 0;
+  long emitted = 0, blocked = 0;
+  /// The k-th point of the rain's sequence, as two numbers in [0, 1).
+  static std::pair<double, double> point(uint64_t seed, uint64_t k);
 };
 
 /// Emission state of one source.

@@ -5,7 +5,10 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <istream>
+#include <ostream>
 #include <sstream>
+#include <type_traits>
 
 namespace scour {
 
@@ -18,6 +21,7 @@ const char* passName(Pass p) {
     case Pass::kIntegrate: return "integrate";
     case Pass::kSources: return "sources";
     case Pass::kSinks: return "sinks";
+    case Pass::kRain: return "rain";
     case Pass::kBoundaryParticles: return "boundary_particles";
     case Pass::kBoundaryNeighbors: return "boundary_neighbors";
     case Pass::kNoSlip: return "no_slip";
@@ -74,6 +78,7 @@ World::World(WorldDesc d)
       sampler_(hf_, p_.spacing) {
   std::string bad = validateParams(d.params);
   require(bad.empty(), bad);
+  if (!fx_.surface_tension) k_.kappa = 0;  // the cohesion term is skipped inside the force pass
   require(hf_.nx() >= 2 && hf_.nz() >= 2, "terrain: needs at least 2 × 2 vertices");
   require(hf_.dx() > 0 && hf_.dz() > 0, "terrain: cell size must be positive");
   for (double h : hf_.heights()) require(std::isfinite(h), "terrain: heights must be finite");
@@ -90,6 +95,19 @@ World::World(WorldDesc d)
             at + ".direction must be a non-zero vector");
     require(src.center.allFinite(), at + ".position must be finite");
     emitters_.emplace_back(src, p_.spacing);
+  }
+  for (size_t r = 0; r < d.rain.size(); ++r) {
+    const Rain& rn = d.rain[r];
+    std::string at = "rain[" + std::to_string(r) + "]";
+    require(std::isfinite(rn.lo_x) && std::isfinite(rn.hi_x) && std::isfinite(rn.lo_z) &&
+                std::isfinite(rn.hi_z) && rn.hi_x > rn.lo_x && rn.hi_z > rn.lo_z,
+            at + ".region must be a finite rectangle with max > min");
+    require(rn.intensity_mm_h > 0 && std::isfinite(rn.intensity_mm_h),
+            at + ".intensity_mm_h must be positive");
+    require(rn.drop_height >= 0 && std::isfinite(rn.drop_height),
+            at + ".drop_height must be finite and ≥ 0");
+    require(std::isfinite(rn.drop_speed), at + ".drop_speed must be finite");
+    rain_.push_back(RainState{rn, 0.0, 0, 0, 0});
   }
   require(d.pressure.empty() || d.pressure.size() == d.particles.size(),
           "pressure: one value per particle expected");
@@ -113,7 +131,7 @@ World::World(WorldDesc d)
     inv_.c_max = i == 0 ? c : std::max(inv_.c_max, c);
   }
   searchNeighbors();
-  computeAccelerations();
+  if (fx_.fluid_motion) computeAccelerations();  // frozen fluid: no SPH pass ever runs
 }
 
 template <class F>
@@ -179,14 +197,16 @@ void World::computeAccelerations() {
 
 void World::removeParticles() {
   const bool open = !dom_.walls;
-  if (sinks_.empty() && !open) return;
+  const bool sinking = fx_.sinks && !sinks_.empty();
+  if (!sinking && !open) return;
   timed(Pass::kSinks, [&] {
     std::vector<uint32_t> keep;
     keep.reserve(f_.size());
     for (size_t i = 0; i < f_.size(); ++i) {
       const Vec3f& x = f_.x[i];
       bool sunk = false;
-      for (const Sink& s : sinks_) sunk = sunk || s.contains(x);
+      if (sinking)
+        for (const Sink& s : sinks_) sunk = sunk || s.contains(x);
       bool out = open && (x.x() < hf_.x0() || x.x() > hf_.xMax() || x.z() < hf_.z0() ||
                           x.z() > hf_.zMax());
       if (sunk || out) removedSediment_ += f_.sed[i];
@@ -198,10 +218,32 @@ void World::removeParticles() {
   });
 }
 
+void World::emitAt(const Vec3f& pos, const Vec3f& vel, long& blocked, long& emitted) {
+  // The grid indexes the particles that existed at the last search; they have moved by far less
+  // than a cell since, so its 27 cells still hold every particle within Δs/2 of pos. Particles
+  // placed in this step (index ≥ the grid's count) are not in it: sources space their own slots
+  // Δs apart, and rain checks its drops of this step by brute force (there are few).
+  const float r2 = float(0.25 * p_.spacing * p_.spacing);
+  const size_t indexed = grid_.particleCount();
+  bool occupied = false;
+  grid_.forEachCandidate(pos, grid_.start(), grid_.sorted(), [&](uint32_t j) {
+    occupied = occupied || (j < indexed && (f_.x[j] - pos).squaredNorm() < r2);
+  });
+  for (size_t j = indexed; j < f_.size() && !occupied; ++j)
+    occupied = (f_.x[j] - pos).squaredNorm() < r2;
+  if (occupied) {
+    ++blocked;
+    return;
+  }
+  f_.push(pos, vel, nextId_++, float(p_.rest_density));
+  vhat_.push_back(vel);
+  ++emitted;
+  ++emittedTotal_;
+}
+
 void World::emit() {
-  if (emitters_.empty()) return;
+  if (emitters_.empty() || !fx_.sources) return;
   timed(Pass::kSources, [&] {
-    const float r2 = float(0.25 * p_.spacing * p_.spacing);
     for (Emitter& e : emitters_) {
       if (time_ < e.src.start || time_ >= e.src.stop) continue;
       e.travelled += e.speed * dt_;
@@ -209,24 +251,28 @@ void World::emit() {
         e.travelled -= p_.spacing;
         const Eigen::Vector3d base = e.src.center + e.src.direction * e.travelled;
         const Vec3f vel = (e.src.direction * e.speed).cast<float>();
-        const size_t existing = f_.size();
-        for (const auto& off : e.slots) {
-          Vec3f pos = (base + off).cast<float>();
-          bool occupied = false;
-          // The grid indexes the particles that existed at the last search; they have moved by
-          // far less than a cell since, so its 27 cells still hold every particle within Δs/2.
-          grid_.forEachCandidate(pos, grid_.start(), grid_.sorted(), [&](uint32_t j) {
-            occupied = occupied || (j < existing && (f_.x[j] - pos).squaredNorm() < r2);
-          });
-          if (occupied) {
-            ++e.blocked;
-            continue;
-          }
-          f_.push(pos, vel, nextId_++, float(p_.rest_density));
-          vhat_.push_back(vel);
-          ++e.emitted;
-          ++emittedTotal_;
-        }
+        for (const auto& off : e.slots) emitAt((base + off).cast<float>(), vel, e.blocked, e.emitted);
+      }
+    }
+  });
+}
+
+void World::rain() {
+  if (rain_.empty() || !fx_.rain) return;
+  timed(Pass::kRain, [&] {
+    const double drop = p_.spacing * p_.spacing * p_.spacing;
+    for (RainState& r : rain_) {
+      const Rain& rn = r.rain;
+      if (time_ < rn.start || time_ >= rn.stop) continue;
+      const double metresPerSecond = rn.intensity_mm_h / 3.6e6;
+      r.pending += metresPerSecond * (rn.hi_x - rn.lo_x) * (rn.hi_z - rn.lo_z) * dt_;
+      while (r.pending >= drop) {
+        r.pending -= drop;
+        const auto [u, w] = RainState::point(rn.seed, r.drawn++);
+        const double x = rn.lo_x + u * (rn.hi_x - rn.lo_x), z = rn.lo_z + w * (rn.hi_z - rn.lo_z);
+        const double y = hf_.heightAt(x, z) + std::max(rn.drop_height, p_.spacing);
+        emitAt(Vec3f(float(x), float(y), float(z)), Vec3f(0, -float(rn.drop_speed), 0), r.blocked,
+               r.emitted);
       }
     }
   });
@@ -283,11 +329,12 @@ StepStats World::step() {
     });
   }
   emit();  // before removal: the grid's indices are those of the last search
+  rain();
   removeParticles();
   ++step_;
   time_ += dt_;
   // Frozen fluid (sediment-only scenes) keeps its neighbors unless particles come or go.
-  const bool moved = fx_.fluid_motion || f_.size() != n0 || !emitters_.empty() || !sinks_.empty();
+  const bool moved = fx_.fluid_motion || f_.size() != n0;
   if (moved) {
     if (p_.reorder_every > 0 && step_ % p_.reorder_every == 0) {
       timed(Pass::kNeighborSearch, [&] {
@@ -296,6 +343,13 @@ StepStats World::step() {
       });
     }
     searchNeighbors();
+  } else if (fx_.erosion || fx_.deposition) {
+    // The terrain moved under frozen fluid: the boundary particles followed it, so their
+    // neighbor lists are rebuilt (the fluid's are unchanged).
+    timed(Pass::kBoundaryNeighbors, [&] {
+      grid_.binOther(b_.x, bstart_, bsorted_);
+      bnbrs_.build(grid_, f_.x, b_.x, bstart_, bsorted_, float(k_.h), false);
+    });
   }
   const size_t n = f_.size();
   if (fx_.fluid_motion) {
@@ -424,6 +478,124 @@ uint64_t World::stateHash() const {
   mix(hf_.heights().data(), hf_.heights().size() * sizeof(double));
   mix(&time_, sizeof time_);
   return h;
+}
+
+namespace {
+
+template <class T>
+void put(std::ostream& o, const T& v) {
+  static_assert(std::is_trivially_copyable_v<T>);
+  o.write(reinterpret_cast<const char*>(&v), sizeof v);
+}
+template <class T>
+void putVec(std::ostream& o, const std::vector<T>& v) {
+  put(o, uint64_t(v.size()));
+  o.write(reinterpret_cast<const char*>(v.data()), std::streamsize(v.size() * sizeof(T)));
+}
+template <class T>
+void get(std::istream& in, T& v, const char* what) {
+  in.read(reinterpret_cast<char*>(&v), sizeof v);
+  if (!in) throw std::runtime_error(std::string("state ends early (in ") + what + ")");
+}
+template <class T>
+void getVec(std::istream& in, std::vector<T>& v, const char* what, uint64_t expect = UINT64_MAX) {
+  uint64_t n = 0;
+  get(in, n, what);
+  if (expect != UINT64_MAX && n != expect)
+    throw std::runtime_error(std::string("state does not fit this scene (") + what + ": " +
+                             std::to_string(n) + " entries, the scene has " +
+                             std::to_string(expect) + ")");
+  if (n > (uint64_t(1) << 34) / sizeof(T))
+    throw std::runtime_error(std::string("state is corrupt (") + what + ": " + std::to_string(n) +
+                             " entries)");
+  v.resize(n);
+  in.read(reinterpret_cast<char*>(v.data()), std::streamsize(n * sizeof(T)));
+  if (!in) throw std::runtime_error(std::string("state ends early (in ") + what + ")");
+}
+
+constexpr uint32_t kStateTag = 0x444C5257;  // "WRLD"
+constexpr uint32_t kStateVersion = 1;
+
+}  // namespace
+
+void World::saveState(std::ostream& o) const {
+  put(o, kStateTag);
+  put(o, kStateVersion);
+  putVec(o, f_.x), putVec(o, f_.v), putVec(o, f_.a), putVec(o, f_.rho), putVec(o, f_.p);
+  putVec(o, f_.id), putVec(o, f_.sed), putVec(o, vhat_);
+  putVec(o, hf_.heights());
+  putVec(o, b_.x), putVec(o, b_.triangle), putVec(o, b_.area), putVec(o, b_.bary);
+  putVec(o, sampler_.activeTiles());
+  put(o, uint64_t(emitters_.size()));
+  for (const Emitter& e : emitters_) put(o, e.travelled), put(o, e.emitted), put(o, e.blocked);
+  put(o, uint64_t(rain_.size()));
+  for (const RainState& r : rain_) put(o, r.pending), put(o, r.drawn), put(o, r.emitted), put(o, r.blocked);
+  put(o, time_), put(o, dt_), put(o, step_), put(o, nextId_);
+  put(o, removedSinks_), put(o, removedOutflow_), put(o, emittedTotal_), put(o, removedSediment_);
+  put(o, inv_);
+}
+
+void World::loadState(std::istream& in) {
+  uint32_t tag = 0, version = 0;
+  get(in, tag, "header");
+  get(in, version, "header");
+  if (tag != kStateTag) throw std::runtime_error("not a Scour world state");
+  if (version != kStateVersion)
+    throw std::runtime_error("world state version " + std::to_string(version) +
+                             " is not the version " + std::to_string(kStateVersion) +
+                             " this build reads");
+  Fluid f;
+  getVec(in, f.x, "positions");
+  const uint64_t n = f.x.size();
+  getVec(in, f.v, "velocities", n), getVec(in, f.a, "accelerations", n);
+  getVec(in, f.rho, "densities", n), getVec(in, f.p, "pressures", n);
+  getVec(in, f.id, "ids", n), getVec(in, f.sed, "sediment", n);
+  std::vector<Vec3f> vhat;
+  getVec(in, vhat, "predicted velocities");  // empty while the fluid is frozen
+  if (!vhat.empty() && vhat.size() != n) throw std::runtime_error("state is corrupt (predicted velocities)");
+  std::vector<double> heights;
+  getVec(in, heights, "terrain heights", hf_.heights().size());
+  BoundaryParticles b;
+  getVec(in, b.x, "boundary particles");
+  const uint64_t nb = b.x.size();
+  getVec(in, b.triangle, "boundary triangles", nb), getVec(in, b.area, "boundary areas", nb);
+  getVec(in, b.bary, "boundary coordinates", nb);
+  for (int t : b.triangle)
+    if (t < 0 || t >= hf_.triangleCount()) throw std::runtime_error("state is corrupt (boundary triangle)");
+  std::vector<int> tiles;
+  getVec(in, tiles, "active tiles");
+  for (int t : tiles)
+    if (t < 0 || t >= sampler_.tileCount()) throw std::runtime_error("state is corrupt (tile)");
+  uint64_t count = 0;
+  get(in, count, "sources");
+  if (count != emitters_.size())
+    throw std::runtime_error("state does not fit this scene (" + std::to_string(count) +
+                             " sources, the scene has " + std::to_string(emitters_.size()) + ")");
+  for (Emitter& e : emitters_) get(in, e.travelled, "sources"), get(in, e.emitted, "sources"), get(in, e.blocked, "sources");
+  get(in, count, "rain");
+  if (count != rain_.size())
+    throw std::runtime_error("state does not fit this scene (" + std::to_string(count) +
+                             " rain regions, the scene has " + std::to_string(rain_.size()) + ")");
+  for (RainState& r : rain_)
+    get(in, r.pending, "rain"), get(in, r.drawn, "rain"), get(in, r.emitted, "rain"), get(in, r.blocked, "rain");
+  get(in, time_, "clock"), get(in, dt_, "clock"), get(in, step_, "clock"), get(in, nextId_, "clock");
+  get(in, removedSinks_, "counters"), get(in, removedOutflow_, "counters");
+  get(in, emittedTotal_, "counters"), get(in, removedSediment_, "counters");
+  get(in, inv_, "invariants");
+  f.scratch.clear();
+  f_ = std::move(f);
+  vhat_ = std::move(vhat);
+  hf_.heights() = std::move(heights);
+  b_ = std::move(b);
+  sampler_.setActiveTiles(std::move(tiles));
+  // The neighbor lists of the last search: the particles have not moved since it (a step ends
+  // with a kick), and the boundary lists are rebuilt on the boundary particles' places.
+  grid_.build(f_.x, float(k_.h));
+  nbrs_.build(grid_, f_.x, f_.x, grid_.start(), grid_.sorted(), float(k_.h), true);
+  if (needsBoundary()) {
+    grid_.binOther(b_.x, bstart_, bsorted_);
+    bnbrs_.build(grid_, f_.x, b_.x, bstart_, bsorted_, float(k_.h), false);
+  }
 }
 
 size_t World::memoryBytes() const {

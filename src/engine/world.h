@@ -15,6 +15,7 @@
 #include <array>
 #include <chrono>
 #include <cstdint>
+#include <iosfwd>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -39,6 +40,7 @@ enum class Pass {
   kIntegrate,
   kSources,
   kSinks,
+  kRain,
   kBoundaryParticles,
   kBoundaryNeighbors,
   kNoSlip,
@@ -63,6 +65,9 @@ struct Effects {
   bool diffusion = false;   ///< eq. (19)
   bool deposition = false;  ///< eq. (20)
   bool erosion = false;     ///< eqs. (9)–(10)
+  bool sources = true;      ///< the scene's sources emit
+  bool sinks = true;        ///< the scene's sinks (and open walls) remove
+  bool rain = true;         ///< the scene's rain falls
 };
 
 /// The soil budget [m³]: terrain above the initial lowest height, sediment suspended in the
@@ -105,6 +110,7 @@ struct WorldDesc {
   std::vector<double> concentration;
   std::vector<Source> sources;
   std::vector<Sink> sinks;
+  std::vector<Rain> rain;
 };
 
 class World {
@@ -145,6 +151,12 @@ class World {
 
   /// FNV-1a over particle count, positions, velocities, heights and time.
   uint64_t stateHash() const;
+  /// Everything a later step reads that the description does not determine: particles, terrain,
+  /// boundary particles and active tiles, source and rain progress, time, counters. A World
+  /// made from the same description and given this state steps on bit for bit as the original.
+  void saveState(std::ostream& out) const;
+  /// Restores saveState's output. Throws std::runtime_error when it does not fit this World.
+  void loadState(std::istream& in);
   /// Bytes held by particle arrays, grid and neighbor lists.
   size_t memoryBytes() const;
 
@@ -156,6 +168,8 @@ class World {
   void computeAccelerations();
   void removeParticles();
   void emit();
+  void rain();
+  void emitAt(const Vec3f& pos, const Vec3f& vel, long& blocked, long& emitted);
   void checkInvariants();
   void sedimentWork();
   bool needsBoundary() const { return fx_.no_slip || fx_.erosion || fx_.deposition; }
@@ -175,6 +189,7 @@ class World {
   std::vector<Vec3f> vhat_;
   std::vector<Emitter> emitters_;
   std::vector<Sink> sinks_;
+  std::vector<RainState> rain_;
   Grid grid_;
   NeighborLists nbrs_, bnbrs_;
   BoundarySampler sampler_;

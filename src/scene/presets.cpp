@@ -1,8 +1,8 @@
 #include "scene/presets.h"
 
-#include <stb_image.h>
-
+#include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <fstream>
 #include <limits>
 #include <stdexcept>
@@ -18,118 +18,50 @@ const std::vector<PresetInfo>& presetList() {
       {"block", "a wide pool of water over a gently rolling heightfield (benchmark)"},
       {"settling", "sediment-only: a frozen lattice of water, sediment settling from one top particle (Fig. 4)"},
       {"diffusion", "sediment-only: a frozen lattice of water, sediment diffusing from the centre (Fig. 5)"},
+      {"canyon", "paper Fig. 1: a river carving the real Grand Canyon (SRTM, 700 x 350 grid, ~130k particles)"},
+      {"lake", "paper Fig. 7: a lake in a crater fills until it overflows and cuts new paths (~90k particles)"},
+      {"waterfall", "paper Fig. 8: two sources over three terraces carve waterfalls (728 x 512 grid, ~650k particles)"},
+      {"rain", "rain on rolling fBm hills: rills gather into streams that run off the edges"},
   };
   return list;
 }
 
 namespace {
 
-// A greyscale image as doubles, row-major (rows along +z).
-struct Gray {
-  int w = 0, h = 0;
-  std::vector<double> v;
-};
-
-Gray readHeightmap(const TerrainSpec& t) {
-  Gray g;
-  const std::string& f = t.file;
-  const bool raw = f.size() > 4 && f.substr(f.size() - 4) == ".r32";
-  constexpr long long kMaxPixels = 1LL << 27;  // 134 M pixels: 1 GB of doubles
-  if (raw) {
-    if (t.raw_width < 2 || t.raw_height < 2)
-      throw TerrainError(f + ": a .r32 heightmap needs terrain.raw_width and raw_height ≥ 2");
-    if (1LL * t.raw_width * t.raw_height > kMaxPixels)
-      throw TerrainError(f + ": " + std::to_string(t.raw_width) + " × " +
-                         std::to_string(t.raw_height) + " pixels is more than this build reads");
-    std::ifstream in(f, std::ios::binary);
-    if (!in) throw TerrainError(f + ": cannot open the heightmap");
-    std::vector<float> px(size_t(t.raw_width) * t.raw_height);
-    in.read(reinterpret_cast<char*>(px.data()), std::streamsize(px.size() * sizeof(float)));
-    if (in.gcount() != std::streamsize(px.size() * sizeof(float)))
-      throw TerrainError(f + ": holds fewer than raw_width × raw_height float32 values");
-    g.w = t.raw_width, g.h = t.raw_height;
-    g.v.assign(px.begin(), px.end());
-  } else {
-    int w = 0, h = 0, comp = 0;
-    if (!stbi_info(f.c_str(), &w, &h, &comp)) {
-      std::ifstream probe(f);
-      throw TerrainError(f + (probe ? ": not a readable image (" + std::string(stbi_failure_reason()) + ")"
-                                    : ": cannot open the heightmap"));
-    }
-    if (comp != 1)
-      throw TerrainError(f + ": expected a greyscale image, found " + std::to_string(comp) +
-                         " channels");
-    if (1LL * w * h > kMaxPixels)
-      throw TerrainError(f + ": " + std::to_string(w) + " × " + std::to_string(h) +
-                         " pixels is more than this build reads");
-    g.w = w, g.h = h;
-    g.v.resize(size_t(w) * h);
-    if (stbi_is_16_bit(f.c_str())) {
-      stbi_us* px = stbi_load_16(f.c_str(), &w, &h, &comp, 1);
-      if (!px) throw TerrainError(f + ": cannot decode: " + stbi_failure_reason());
-      for (size_t i = 0; i < g.v.size(); ++i) g.v[i] = px[i];
-      stbi_image_free(px);
-    } else {
-      stbi_uc* px = stbi_load(f.c_str(), &w, &h, &comp, 1);
-      if (!px) throw TerrainError(f + ": cannot decode: " + stbi_failure_reason());
-      for (size_t i = 0; i < g.v.size(); ++i) g.v[i] = px[i];
-      stbi_image_free(px);
-    }
-  }
-  for (double x : g.v)
-    if (!std::isfinite(x)) throw TerrainError(f + ": holds a non-finite height");
-  return g;
+size_t nearestVertex(const Heightfield& hf, double x, double z) {
+  const int i = std::clamp(int(std::lround((x - hf.x0()) / hf.dx())), 0, hf.nx() - 1);
+  const int k = std::clamp(int(std::lround((z - hf.z0()) / hf.dz())), 0, hf.nz() - 1);
+  return size_t(k) * hf.nx() + i;
 }
 
-void fillFromHeightmap(const TerrainSpec& t, Heightfield& hf) {
-  const Gray g = readHeightmap(t);
-  const int cw = t.crop_w > 0 ? t.crop_w : g.w - t.crop_x, ch = t.crop_h > 0 ? t.crop_h : g.h - t.crop_z;
-  if (t.crop_x < 0 || t.crop_z < 0 || cw < 2 || ch < 2 || t.crop_x + cw > g.w || t.crop_z + ch > g.h)
-    throw TerrainError(t.file + ": the crop [" + std::to_string(t.crop_x) + ", " +
-                       std::to_string(t.crop_z) + ", " + std::to_string(cw) + ", " +
-                       std::to_string(ch) + "] does not fit the " + std::to_string(g.w) + " × " +
-                       std::to_string(g.h) + " image");
-  // Bilinear resampling of the crop onto the grid.
-  for (int k = 0; k < hf.nz(); ++k)
-    for (int i = 0; i < hf.nx(); ++i) {
-      const double u = double(i) / (hf.nx() - 1) * (cw - 1), w = double(k) / (hf.nz() - 1) * (ch - 1);
-      const int i0 = std::min(int(u), cw - 2), k0 = std::min(int(w), ch - 2);
-      const double fu = u - i0, fw = w - k0;
-      auto at = [&](int a, int b) { return g.v[size_t(t.crop_z + k0 + b) * g.w + t.crop_x + i0 + a]; };
-      hf.at(i, k) = (1 - fw) * ((1 - fu) * at(0, 0) + fu * at(1, 0)) + fw * ((1 - fu) * at(0, 1) + fu * at(1, 1));
+// The vertices below the block's top, inside its (x, z) box, connected (4-neighbour) to the
+// vertex nearest flood_from.
+std::vector<uint8_t> floodedVertices(const Heightfield& hf, const WaterBlock& b) {
+  std::vector<uint8_t> wet(size_t(hf.nx()) * hf.nz(), 0);
+  auto open = [&](int i, int k) {
+    const double x = hf.x0() + i * hf.dx(), z = hf.z0() + k * hf.dz();
+    return x >= b.min.x() && x <= b.max.x() && z >= b.min.z() && z <= b.max.z() &&
+           hf.at(i, k) < b.max.y();
+  };
+  const size_t seed = nearestVertex(hf, b.flood_from.x(), b.flood_from.y());
+  std::vector<size_t> stack;
+  if (open(int(seed % hf.nx()), int(seed / hf.nx()))) stack.push_back(seed), wet[seed] = 1;
+  while (!stack.empty()) {
+    const size_t v = stack.back();
+    stack.pop_back();
+    const int i = int(v % hf.nx()), k = int(v / hf.nx());
+    const int di[4] = {1, -1, 0, 0}, dk[4] = {0, 0, 1, -1};
+    for (int n = 0; n < 4; ++n) {
+      const int a = i + di[n], c = k + dk[n];
+      if (a < 0 || c < 0 || a >= hf.nx() || c >= hf.nz()) continue;
+      const size_t u = size_t(c) * hf.nx() + a;
+      if (!wet[u] && open(a, c)) wet[u] = 1, stack.push_back(u);
     }
-  // Scale to the range the scene asks for.
-  const double lo = hf.minHeight(), hi = hf.maxHeight(), span = hi > lo ? hi - lo : 1.0;
-  for (double& h : hf.heights()) h = t.height_min + (h - lo) / span * (t.height_max - t.height_min);
+  }
+  return wet;
 }
 
 }  // namespace
-
-Heightfield buildTerrain(const TerrainSpec& t) {
-  const int nx = std::max(2, int(std::round(t.length_x / t.cell)) + 1);
-  const int nz = std::max(2, int(std::round(t.length_z / t.cell)) + 1);
-  Heightfield hf(nx, nz, t.length_x / (nx - 1), t.length_z / (nz - 1));
-  if (t.kind == "heightmap") {
-    fillFromHeightmap(t, hf);
-    for (double& h : hf.heights()) h += t.base;
-    return hf;
-  }
-  for (int k = 0; k < nz; ++k)
-    for (int i = 0; i < nx; ++i) {
-      const double x = i * hf.dx(), z = k * hf.dz();
-      double h = t.base;
-      if (t.kind == "valley") {
-        // Falls along +x; parabolic cross-section in z, lowest on the axis z = length_z / 2.
-        const double across = 2.0 * (z - 0.5 * t.length_z) / t.length_z;
-        h += t.slope * (t.length_x - x) + t.side_rise * across * across;
-      } else if (t.kind == "rolling") {
-        h += t.amplitude * std::sin(2 * M_PI * 3 * x / t.length_x) *
-             std::cos(2 * M_PI * 2 * z / t.length_z);
-      }
-      hf.at(i, k) = h;
-    }
-  return hf;
-}
 
 Scene buildScene(const SceneSpec& spec) {
   Scene s;
@@ -141,9 +73,11 @@ Scene buildScene(const SceneSpec& spec) {
   d.effects = spec.effects;
   d.sources = spec.sources;
   d.sinks = spec.sinks;
+  d.rain = spec.rain;
   const double ds = spec.params.spacing;
   const double rhoG = spec.params.rest_density * spec.params.gravity;
   for (const WaterBlock& b : spec.blocks) {
+    const std::vector<uint8_t> wet = b.flood ? floodedVertices(d.terrain, b) : std::vector<uint8_t>{};
     // Whole cells that fit in the box (never more, so no particle starts inside a wall next to
     // it), centred in it.
     const Eigen::Vector3d extent = b.max - b.min;
@@ -154,6 +88,9 @@ Scene buildScene(const SceneSpec& spec) {
       for (int j = 0; j < n.y(); ++j)
         for (int i = 0; i < n.x(); ++i) {
           Eigen::Vector3d x = lo + ds * Eigen::Vector3d(i + 0.5, j + 0.5, k + 0.5);
+          if ((b.above_terrain || b.flood) && x.y() < d.terrain.heightAt(x.x(), x.z()) + 0.5 * ds)
+            continue;
+          if (b.flood && !wet[nearestVertex(d.terrain, x.x(), x.z())]) continue;
           d.particles.push_back(x.cast<float>());
           d.pressure.push_back(float(rhoG * (top - x.y())));  // at rest: hydrostatic
         }
@@ -287,6 +224,133 @@ SceneSpec sedimentLattice(const std::string& name, int nx, int ny, int nz, bool 
   return s;
 }
 
+// What the paper's scenes share: all the erosion effects, friction at the terrain, an open domain
+// that lets the water leave. Kε = 0.1 and τc = 3 are the paper's (and our defaults); D = 0.01
+// keeps the diffusion limit on Δt below the SPH one (as in `default`).
+SceneSpec paperScene(const std::string& name, double spacing, double scale) {
+  SceneSpec s = named(name);
+  SimParams& p = s.params;
+  p.spacing = spacing / std::cbrt(scale);
+  p.sound_speed = 15.0;
+  p.viscosity = 1e-3;
+  p.boundary_friction = 1e-4;
+  p.diffusion = 0.01;
+  s.effects.no_slip = true;
+  s.effects.erosion = s.effects.settling = s.effects.diffusion = s.effects.deposition = true;
+  s.domain.walls = false;
+  return s;
+}
+
+SceneSpec canyon(double scale) {
+  // The SRTM tile's Colorado river stretch: a 700 × 350 pixel crop (about 63 × 31 km) mapped 1:1
+  // onto a 700 × 350 cell grid of 14 × 7 m, relief 1.2 m (3.5× exaggerated), tilted 0.14 m down
+  // to the west (x = 0), where the river leaves. The inner gorge is filled to a level as the
+  // river, and a source keeps it flowing from the east end.
+  SceneSpec s = paperScene("canyon", 0.02, scale);
+  TerrainSpec& t = s.terrain;
+  t.kind = "heightmap";
+  t.file = "builtin:srtm-grand-canyon";
+  t.crop_x = 400, t.crop_z = 620, t.crop_w = 700, t.crop_h = 350;
+  t.length_x = 14.0, t.length_z = 7.0, t.cell = 0.02;
+  t.height_min = 0.0, t.height_max = 1.2;
+  t.slope = -0.01;
+  WaterBlock river;
+  river.min = {0.0, -1.0, 0.0};
+  river.max = {14.0, 0.136, 7.0};
+  river.flood = true;
+  river.flood_from = {7.0, 4.64};  // on the river, mid-way
+  s.blocks.push_back(river);
+  Source src;
+  src.center = {13.8, 0.25, 5.72};
+  src.radius = 0.06;
+  src.direction = {-1, -0.5, 0};
+  src.rate = 0.004;
+  s.sources.push_back(src);
+  return s;
+}
+
+SceneSpec lake(double scale) {
+  // A crater (paraboloid inside the rim, falling outside it) with fBm relief, tilted so that its
+  // rim is lowest towards +x. It starts half full; a source fills it until it spills over the low
+  // point of the rim and cuts a path down the outer slope.
+  SceneSpec s = paperScene("lake", 0.0225, scale);
+  TerrainSpec& t = s.terrain;
+  t.kind = "bowl";
+  t.length_x = t.length_z = 5.0;
+  t.cell = 0.025;
+  t.side_rise = 0.4;
+  t.rim = 0.7;
+  t.slope = 0.02;
+  t.noise.amplitude = 0.04;
+  t.noise.feature = 1.0;
+  t.noise.octaves = 5;
+  t.noise.seed = 7;
+  WaterBlock pool;
+  pool.min = {0.0, -1.0, 0.0};
+  pool.max = {5.0, 0.36, 5.0};
+  pool.flood = true;
+  pool.flood_from = {2.5, 2.5};
+  s.blocks.push_back(pool);
+  Source src;
+  src.center = {1.2, 0.7, 2.5};
+  src.radius = 0.08;
+  src.direction = {1, -1, 0};
+  src.rate = 0.02;
+  s.sources.push_back(src);
+  return s;
+}
+
+SceneSpec waterfall(double scale) {
+  // Three terraces falling 0.4 m each along +x, with a valley cross-section and fBm relief, on a
+  // 728 × 512 cell grid. A lake on the top terrace and two sources behind it feed the falls.
+  SceneSpec s = paperScene("waterfall", 0.01, scale);
+  TerrainSpec& t = s.terrain;
+  t.kind = "terraces";
+  t.length_x = 7.28, t.length_z = 5.12, t.cell = 0.01;
+  t.slope = 1.2 / 7.28;
+  t.levels = 3;
+  t.riser = 0.12;
+  t.side_rise = 0.3;
+  t.noise.amplitude = 0.02;
+  t.noise.feature = 0.8;
+  t.noise.octaves = 4;
+  t.noise.seed = 3;
+  WaterBlock top;
+  top.min = {0.3, 0.5, 0.3};
+  top.max = {2.3, 0.945, 4.82};
+  top.above_terrain = true;
+  s.blocks.push_back(top);
+  for (double z : {1.8, 3.3}) {
+    Source src;
+    src.center = {0.15, 1.35, z};
+    src.radius = 0.06;
+    src.direction = {1, -0.3, 0};
+    src.rate = 0.01;
+    s.sources.push_back(src);
+  }
+  return s;
+}
+
+SceneSpec rainScene(double scale) {
+  SceneSpec s = paperScene("rain", 0.02, scale);
+  TerrainSpec& t = s.terrain;
+  t.kind = "fbm";
+  t.length_x = t.length_z = 2.0;
+  t.cell = 0.02;
+  t.slope = 0.1;
+  t.noise.amplitude = 0.12;
+  t.noise.feature = 0.8;
+  t.noise.octaves = 5;
+  t.noise.seed = 11;
+  Rain r;
+  r.lo_x = r.lo_z = 0.1;
+  r.hi_x = r.hi_z = 1.9;
+  r.intensity_mm_h = 2000.0;  // a storm, sped up: 0.2 L/s over the 3.2 m² region
+  r.drop_height = 0.15;
+  s.rain.push_back(r);
+  return s;
+}
+
 }  // namespace
 
 SceneSpec presetSpec(const std::string& name, double scale, long particles) {
@@ -299,6 +363,10 @@ SceneSpec presetSpec(const std::string& name, double scale, long particles) {
   if (name == "block") return block(scale, particles);
   if (name == "settling") return sedimentLattice(name, 9, 40, 9, true);
   if (name == "diffusion") return sedimentLattice(name, 21, 21, 21, false);
+  if (name == "canyon") return canyon(scale);
+  if (name == "lake") return lake(scale);
+  if (name == "waterfall") return waterfall(scale);
+  if (name == "rain") return rainScene(scale);
   std::string names;
   for (const auto& p : presetList()) names += std::string(names.empty() ? "" : ", ") + p.name;
   throw std::invalid_argument("unknown scene '" + name + "' (built-in scenes: " + names + ")");

@@ -15,16 +15,41 @@
 
 namespace scour {
 
-/// A terrain over [0, length_x] × [0, length_z]: procedural, or a heightmap image.
+/// Fractal (fBm) value noise added to a terrain: `octaves` layers, each of half the amplitude and
+/// half the feature size of the one before, from a seeded lattice (same seed, same terrain).
+struct NoiseSpec {
+  double amplitude = 0.0;  ///< peak height of the first octave [m]; 0 = no noise
+  double feature = 1.0;    ///< feature size (lattice spacing) of the first octave [m]
+  int octaves = 4;
+  int seed = 1;
+};
+
+/// A terrain over [0, length_x] × [0, length_z]: procedural, or a heightmap image. Every kind
+/// adds `base`, the tilt `slope` · (length_x − x) (falling along +x) and the noise.
+///   flat       nothing more
+///   slope      the tilt alone
+///   valley     plus a parabolic cross-section: side_rise · (2 (z − length_z/2) / length_z)²
+///   bowl       a crater: a paraboloid rising to side_rise at the rim (radius `rim` × half the
+///              shorter side, centred), falling linearly outside it to 0 at the edges
+///   terraces   the tilt cut into `levels` flat steps with risers over a fraction `riser` of each
+///              step, plus the valley cross-section
+///   rolling    bumps of height `amplitude`: amplitude · sin(6πx / length_x) · cos(4πz / length_z)
+///   fbm        the noise alone (with `slope`/`base`)
+///   heightmap  an image (below), resampled and scaled to [height_min, height_max]
 struct TerrainSpec {
-  std::string kind = "flat";  ///< flat | valley | rolling | heightmap
+  std::string kind = "flat";
   double length_x = 1.0, length_z = 1.0;  ///< extent [m]
   double cell = 0.05;                    ///< grid spacing (rounded to fit the extent) [m]
-  double slope = 0.0;      ///< valley: drop per metre along +x [-]
-  double side_rise = 0.0;  ///< valley: height of the sides above the axis [m]
+  double slope = 0.0;      ///< drop per metre along +x [-]
+  double side_rise = 0.0;  ///< valley/terraces: sides above the axis; bowl: rim height [m]
   double amplitude = 0.0;  ///< rolling: height of the bumps [m]
   double base = 0.0;       ///< height added everywhere [m]
-  // heightmap: a greyscale PNG (8 or 16 bit) or raw float32 (.r32, needs raw_width/raw_height),
+  int levels = 3;          ///< terraces: number of steps
+  double riser = 0.15;     ///< terraces: fraction of a step taken by its riser
+  double rim = 0.8;        ///< bowl: rim radius over half the shorter side
+  NoiseSpec noise;
+  // heightmap: a greyscale PNG (8 or 16 bit) or raw float32 (.r32, needs raw_width/raw_height)
+  // or a built-in image ("builtin:srtm-grand-canyon"),
   // cropped to [crop_x, crop_x + crop_w) × [crop_z, crop_z + crop_h) pixels (0 = whole image),
   // resampled bilinearly to the grid, and scaled so its lowest point is height_min and its
   // highest height_max. Image rows run along +z, columns along +x.
@@ -48,8 +73,15 @@ struct TerrainError : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+/// A box of water on a lattice of spacing Δs. With `above_terrain`, only the lattice points at
+/// least Δs/2 above the terrain are filled: a lake or river up to the box's top. With `flood`,
+/// only the terrain below the box's top that is connected to the point `flood_from` (x, z) is
+/// filled, as water poured there would: a lake stays inside its rim.
 struct WaterBlock {
   Eigen::Vector3d min = Eigen::Vector3d::Zero(), max = Eigen::Vector3d::Zero();  ///< [m]
+  bool above_terrain = false;
+  bool flood = false;
+  Eigen::Vector2d flood_from = Eigen::Vector2d::Zero();  ///< (x, z) [m]
 };
 
 /// Initial sediment: the particle nearest `position` starts at concentration c.
@@ -67,6 +99,7 @@ struct SceneSpec {
   std::vector<WaterBlock> blocks;
   std::vector<Source> sources;
   std::vector<Sink> sinks;
+  std::vector<Rain> rain;
   std::vector<SedimentMark> sediment;
 };
 
@@ -87,6 +120,8 @@ const std::vector<PresetInfo>& presetList();
 /// std::invalid_argument for an unknown name, naming the valid ones.
 SceneSpec presetSpec(const std::string& name, double scale = 1.0, long particles = 0);
 
+/// The terrain kinds, for messages and the GUI.
+const std::vector<std::string>& terrainKinds();
 /// Builds the heightfield of a terrain spec. Throws TerrainError for a bad heightmap.
 Heightfield buildTerrain(const TerrainSpec& t);
 /// Builds the engine's description: water blocks filled on a cubic lattice of spacing Δs (the

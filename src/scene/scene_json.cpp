@@ -1,6 +1,7 @@
 #include "scene/scene_json.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -13,13 +14,15 @@ using nlohmann::json;
 namespace {
 json vec(const Eigen::Vector3d& v) { return json::array({v.x(), v.y(), v.z()}); }
 
-// The effects a scene can call for, by name. Sources and sinks are on when the scene has any.
+// The effects a scene can call for, by name. A scene file's list is complete: what it leaves out
+// is off.
 const std::vector<std::pair<std::string, bool Effects::*>>& effectTable() {
   static const std::vector<std::pair<std::string, bool Effects::*>> t = {
       {"fluid_motion", &Effects::fluid_motion}, {"surface_tension", &Effects::surface_tension},
       {"no_slip", &Effects::no_slip},           {"settling", &Effects::settling},
       {"diffusion", &Effects::diffusion},       {"deposition", &Effects::deposition},
-      {"erosion", &Effects::erosion}};
+      {"erosion", &Effects::erosion},           {"sources", &Effects::sources},
+      {"sinks", &Effects::sinks},               {"rain", &Effects::rain}};
   return t;
 }
 
@@ -68,6 +71,25 @@ class Fields {
     std::snprintf(range, sizeof range, "a finite number in [%g, %g]", lo, hi);
     if (!std::isfinite(x) || x < lo || x > hi) fail(at(key), range, v);
     return x;
+  }
+  long long integer(const std::string& key, long long fallback, long long lo, long long hi) {
+    if (!has(key)) return fallback;
+    const json& v = j_.at(key);
+    if (!v.is_number_integer() || v.get<long long>() < lo || v.get<long long>() > hi)
+      fail(at(key), "a whole number in [" + std::to_string(lo) + ", " + std::to_string(hi) + "]", v);
+    return v.get<long long>();
+  }
+  std::array<double, 2> vec2(const std::string& key) {
+    if (!has(key)) throw SceneError(file_ + ": " + at(key) + ": required field is missing");
+    const json& v = j_.at(key);
+    if (!v.is_array() || v.size() != 2) fail(at(key), "an array of 2 numbers (x, z)", v);
+    std::array<double, 2> out{};
+    for (int a = 0; a < 2; ++a) {
+      if (!v[a].is_number() || !std::isfinite(v[a].get<double>()))
+        fail(at(key) + "[" + std::to_string(a) + "]", "a finite number", v[a]);
+      out[size_t(a)] = v[a].get<double>();
+    }
+    return out;
   }
   bool boolean(const std::string& key, bool fallback) {
     if (!has(key)) return fallback;
@@ -164,6 +186,13 @@ json sceneToJson(const Scene& scene) {
                   {"side_rise", t.side_rise},
                   {"amplitude", t.amplitude},
                   {"base", t.base}};
+  if (t.kind == "terraces") j["terrain"]["levels"] = t.levels, j["terrain"]["riser"] = t.riser;
+  if (t.kind == "bowl") j["terrain"]["rim"] = t.rim;
+  if (t.noise.amplitude != 0)
+    j["terrain"]["noise"] = {{"amplitude", t.noise.amplitude},
+                             {"feature", t.noise.feature},
+                             {"octaves", t.noise.octaves},
+                             {"seed", t.noise.seed}};
   if (t.kind == "heightmap") {
     j["terrain"]["file"] = t.file;
     j["terrain"]["height_min"] = t.height_min;
@@ -178,7 +207,11 @@ json sceneToJson(const Scene& scene) {
     if (e.*member) effects.push_back(name);
   j["effects"] = effects;
   json blocks = json::array();
-  for (const WaterBlock& b : s.blocks) blocks.push_back({{"min", vec(b.min)}, {"max", vec(b.max)}});
+  for (const WaterBlock& b : s.blocks) {
+    json jb = {{"min", vec(b.min)}, {"max", vec(b.max)}, {"above_terrain", b.above_terrain}};
+    if (b.flood) jb["flood_from"] = {b.flood_from.x(), b.flood_from.y()};
+    blocks.push_back(jb);
+  }
   json marks = json::array();
   for (const SedimentMark& m : s.sediment) marks.push_back({{"position", vec(m.position)}, {"c", m.c}});
   j["water"] = {{"blocks", blocks}, {"sediment", marks}};
@@ -194,6 +227,17 @@ json sceneToJson(const Scene& scene) {
   json sinks = json::array();
   for (const Sink& k : s.sinks) sinks.push_back({{"min", vec(k.lo)}, {"max", vec(k.hi)}});
   j["sinks"] = sinks;
+  json rain = json::array();
+  for (const Rain& r : s.rain)
+    rain.push_back({{"min", {r.lo_x, r.lo_z}},
+                    {"max", {r.hi_x, r.hi_z}},
+                    {"intensity_mm_h", r.intensity_mm_h},
+                    {"drop_height", r.drop_height},
+                    {"drop_speed", r.drop_speed},
+                    {"start", r.start},
+                    {"stop", std::isfinite(r.stop) ? json(r.stop) : json(nullptr)},
+                    {"seed", r.seed}});
+  j["rain"] = rain;
   // What the spec built to (not read back): the grid and the particle count.
   const Heightfield& hf = scene.desc.terrain;
   j["built"] = {{"particles", scene.desc.particles.size()},
@@ -253,7 +297,7 @@ SceneSpec specFromJson(const json& j, const std::string& file) {
   {
     const json terrain = top.has("terrain") ? top.raw("terrain") : json::object();
     Fields t(terrain, "terrain", file);
-    s.terrain.kind = t.text("kind", "flat", {"flat", "valley", "rolling", "heightmap"});
+    s.terrain.kind = t.text("kind", "flat", terrainKinds());
     s.terrain.length_x = t.number("length_x", 1.0, 1e-6, kBig);
     s.terrain.length_z = t.number("length_z", 1.0, 1e-6, kBig);
     s.terrain.cell = t.number("cell", 0.05, 1e-6, kBig);
@@ -261,13 +305,30 @@ SceneSpec specFromJson(const json& j, const std::string& file) {
     s.terrain.side_rise = t.number("side_rise", 0.0, -kBig, kBig);
     s.terrain.amplitude = t.number("amplitude", 0.0, -kBig, kBig);
     s.terrain.base = t.number("base", 0.0, -kBig, kBig);
+    if (s.terrain.kind == "terraces") {
+      s.terrain.levels = int(t.integer("levels", 3, 1, 1000));
+      s.terrain.riser = t.number("riser", 0.15, 0.01, 1.0);
+    }
+    if (s.terrain.kind == "bowl") s.terrain.rim = t.number("rim", 0.8, 0.05, 1.0);
+    if (t.has("noise")) {
+      Fields n(t.raw("noise"), "terrain.noise", file);
+      s.terrain.noise.amplitude = n.number("amplitude", 0.0, -kBig, kBig, true);
+      s.terrain.noise.feature = n.number("feature", 1.0, 1e-6, kBig);
+      s.terrain.noise.octaves = int(n.integer("octaves", 4, 1, 16));
+      s.terrain.noise.seed = int(n.integer("seed", 1, 0, 2147483647));
+      n.finish();
+    }
     if (s.terrain.kind == "heightmap") {
       std::string f = t.text("file", "");
       if (f.empty()) throw SceneError(file + ": terrain.file: required for a heightmap terrain");
       // Relative to the scene file.
-      std::filesystem::path p(f);
-      if (p.is_relative()) p = std::filesystem::path(file).parent_path() / p;
-      s.terrain.file = std::filesystem::absolute(p).lexically_normal().string();
+      if (f.rfind("builtin:", 0) == 0) {
+        s.terrain.file = f;  // built into the binary
+      } else {
+        std::filesystem::path p(f);
+        if (p.is_relative()) p = std::filesystem::path(file).parent_path() / p;
+        s.terrain.file = std::filesystem::absolute(p).lexically_normal().string();
+      }
       s.terrain.height_min = t.number("height_min", 0.0, -kBig, kBig);
       s.terrain.height_max = t.number("height_max", 1.0, s.terrain.height_min, kBig);
       if (t.has("crop")) {
@@ -328,7 +389,15 @@ SceneSpec specFromJson(const json& j, const std::string& file) {
     const json& blocks = w.array("blocks");
     for (size_t k = 0; k < blocks.size(); ++k) {
       Fields b(blocks[k], "water.blocks[" + std::to_string(k) + "]", file);
-      WaterBlock wb{b.vec3("min"), b.vec3("max")};
+      WaterBlock wb;
+      wb.min = b.vec3("min");
+      wb.max = b.vec3("max");
+      wb.above_terrain = b.boolean("above_terrain", false);
+      if (b.has("flood_from")) {
+        const auto seed = b.vec2("flood_from");
+        wb.flood = true;
+        wb.flood_from = {seed[0], seed[1]};
+      }
       b.finish();
       for (int a = 0; a < 3; ++a)
         if (!(wb.max[a] > wb.min[a]))
@@ -367,6 +436,23 @@ SceneSpec specFromJson(const json& j, const std::string& file) {
     Sink sk{f.vec3("min"), f.vec3("max")};
     f.finish();
     s.sinks.push_back(sk);
+  }
+  const json& rain = top.array("rain");
+  for (size_t k = 0; k < rain.size(); ++k) {
+    Fields f(rain[k], "rain[" + std::to_string(k) + "]", file);
+    Rain r;
+    const auto lo = f.vec2("min"), hi = f.vec2("max");
+    r.lo_x = lo[0], r.lo_z = lo[1], r.hi_x = hi[0], r.hi_z = hi[1];
+    if (!(r.hi_x > r.lo_x && r.hi_z > r.lo_z))
+      throw SceneError(file + ": " + f.at("max") + ": must exceed min on both axes (x, z)");
+    r.intensity_mm_h = f.number("intensity_mm_h", 0, 1e-6, 1e7, true);
+    r.drop_height = f.number("drop_height", 0.1, 0, kBig);
+    r.drop_speed = f.number("drop_speed", 1.0, 0, 1e3);
+    r.start = f.number("start", 0, 0, 1e9);
+    if (f.has("stop") && !f.raw("stop").is_null()) r.stop = f.number("stop", 0, r.start, 1e9);
+    r.seed = uint64_t(f.integer("seed", 1, 0, 9007199254740991LL));
+    f.finish();
+    s.rain.push_back(r);
   }
   if (top.has("built")) top.raw("built");  // written by sceneToJson for people; not read back
   top.finish();

@@ -51,9 +51,9 @@ TEST_CASE("the reader names the field, what it expected and what it found", "[sc
   CHECK_THAT(error([](json& j) { j["params"]["fluid"]["spacing"] = -0.1; }),
              Catch::Contains("params.fluid.spacing") && Catch::Contains("outside the valid range"));
   CHECK_THAT(error([](json& j) { j["effects"].push_back("erosoin"); }),
-             Catch::Contains("effects[6]: unknown effect 'erosoin' (did you mean 'erosion'?)"));
+             Catch::Contains("effects[9]: unknown effect 'erosoin' (did you mean 'erosion'?)"));
   CHECK_THAT(error([](json& j) { j["terrain"]["kind"] = "volcano"; }),
-             Catch::Contains("terrain.kind: expected one of flat, valley, rolling"));
+             Catch::Contains("terrain.kind: expected one of flat, slope, valley, bowl, terraces, rolling, fbm, heightmap, found \"volcano\""));
   CHECK_THAT(error([](json& j) { j["water"]["blocks"][0]["max"] = json::array({1, 2}); }),
              Catch::Contains("water.blocks[0].max: expected an array of 3 numbers"));
   CHECK_THAT(error([](json& j) { j["water"]["blocks"][0]["max"][1] = -5; }),

@@ -1,0 +1,210 @@
+// Terrains: the procedural generators and heightmap images (files or built into the binary).
+#include <stb_image.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <fstream>
+
+#include "scene/assets.h"
+#include "scene/presets.h"
+
+namespace scour {
+
+namespace {
+
+// A greyscale image as doubles, row-major (rows along +z).
+struct Gray {
+  int w = 0, h = 0;
+  std::vector<double> v;
+};
+
+constexpr long long kMaxPixels = 1LL << 27;  // 134 M pixels: 1 GB of doubles
+
+Gray readRaw(const TerrainSpec& t) {
+  const std::string& f = t.file;
+  if (t.raw_width < 2 || t.raw_height < 2)
+    throw TerrainError(f + ": a .r32 heightmap needs terrain.raw_width and raw_height ≥ 2");
+  if (1LL * t.raw_width * t.raw_height > kMaxPixels)
+    throw TerrainError(f + ": " + std::to_string(t.raw_width) + " × " +
+                       std::to_string(t.raw_height) + " pixels is more than this build reads");
+  std::ifstream in(f, std::ios::binary);
+  if (!in) throw TerrainError(f + ": cannot open the heightmap");
+  std::vector<float> px(size_t(t.raw_width) * t.raw_height);
+  in.read(reinterpret_cast<char*>(px.data()), std::streamsize(px.size() * sizeof(float)));
+  if (in.gcount() != std::streamsize(px.size() * sizeof(float)))
+    throw TerrainError(f + ": holds fewer than raw_width × raw_height float32 values");
+  Gray g;
+  g.w = t.raw_width, g.h = t.raw_height;
+  g.v.assign(px.begin(), px.end());
+  return g;
+}
+
+// A PNG (or any image stb reads) from memory: it must be one channel, 8 or 16 bit.
+Gray decodeImage(const std::string& f, const std::vector<unsigned char>& bytes) {
+  const auto* data = bytes.data();
+  const int size = int(bytes.size());
+  int w = 0, h = 0, comp = 0;
+  if (!stbi_info_from_memory(data, size, &w, &h, &comp))
+    throw TerrainError(f + ": not a readable image (" + std::string(stbi_failure_reason()) + ")");
+  if (comp != 1)
+    throw TerrainError(f + ": expected a greyscale image, found " + std::to_string(comp) + " channels");
+  if (1LL * w * h > kMaxPixels)
+    throw TerrainError(f + ": " + std::to_string(w) + " × " + std::to_string(h) +
+                       " pixels is more than this build reads");
+  Gray g;
+  g.w = w, g.h = h;
+  g.v.resize(size_t(w) * h);
+  if (stbi_is_16_bit_from_memory(data, size)) {
+    stbi_us* px = stbi_load_16_from_memory(data, size, &w, &h, &comp, 1);
+    if (!px) throw TerrainError(f + ": cannot decode: " + stbi_failure_reason());
+    for (size_t i = 0; i < g.v.size(); ++i) g.v[i] = px[i];
+    stbi_image_free(px);
+  } else {
+    stbi_uc* px = stbi_load_from_memory(data, size, &w, &h, &comp, 1);
+    if (!px) throw TerrainError(f + ": cannot decode: " + stbi_failure_reason());
+    for (size_t i = 0; i < g.v.size(); ++i) g.v[i] = px[i];
+    stbi_image_free(px);
+  }
+  return g;
+}
+
+Gray readHeightmap(const TerrainSpec& t) {
+  const std::string& f = t.file;
+  Gray g;
+  if (f.size() > 4 && f.substr(f.size() - 4) == ".r32") {
+    g = readRaw(t);
+  } else if (f.rfind("builtin:", 0) == 0) {
+    const Asset* a = findAsset(f);
+    if (!a) {
+      std::string names;
+      for (const Asset& x : builtinAssets()) names += std::string(names.empty() ? "" : ", ") + x.name;
+      throw TerrainError(f + ": no such built-in heightmap (there is " + names + ")");
+    }
+    g = decodeImage(f, std::vector<unsigned char>(a->data, a->data + a->size));
+  } else {
+    std::ifstream in(f, std::ios::binary);
+    if (!in) throw TerrainError(f + ": cannot open the heightmap");
+    std::vector<unsigned char> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    if (bytes.size() > size_t(1) << 31) throw TerrainError(f + ": file larger than 2 GB");
+    g = decodeImage(f, bytes);
+  }
+  for (double x : g.v)
+    if (!std::isfinite(x)) throw TerrainError(f + ": holds a non-finite height");
+  return g;
+}
+
+void fillFromHeightmap(const TerrainSpec& t, Heightfield& hf) {
+  const Gray g = readHeightmap(t);
+  const int cw = t.crop_w > 0 ? t.crop_w : g.w - t.crop_x, ch = t.crop_h > 0 ? t.crop_h : g.h - t.crop_z;
+  if (t.crop_x < 0 || t.crop_z < 0 || cw < 2 || ch < 2 || t.crop_x + cw > g.w || t.crop_z + ch > g.h)
+    throw TerrainError(t.file + ": the crop [" + std::to_string(t.crop_x) + ", " +
+                       std::to_string(t.crop_z) + ", " + std::to_string(cw) + ", " +
+                       std::to_string(ch) + "] does not fit the " + std::to_string(g.w) + " × " +
+                       std::to_string(g.h) + " image");
+  // Bilinear resampling of the crop onto the grid.
+  for (int k = 0; k < hf.nz(); ++k)
+    for (int i = 0; i < hf.nx(); ++i) {
+      const double u = double(i) / (hf.nx() - 1) * (cw - 1), w = double(k) / (hf.nz() - 1) * (ch - 1);
+      const int i0 = std::min(int(u), cw - 2), k0 = std::min(int(w), ch - 2);
+      const double fu = u - i0, fw = w - k0;
+      auto at = [&](int a, int b) { return g.v[size_t(t.crop_z + k0 + b) * g.w + t.crop_x + i0 + a]; };
+      hf.at(i, k) = (1 - fw) * ((1 - fu) * at(0, 0) + fu * at(1, 0)) + fw * ((1 - fu) * at(0, 1) + fu * at(1, 1));
+    }
+  // Scale to the range the scene asks for.
+  const double lo = hf.minHeight(), hi = hf.maxHeight(), span = hi > lo ? hi - lo : 1.0;
+  for (double& h : hf.heights()) h = t.height_min + (h - lo) / span * (t.height_max - t.height_min);
+}
+
+// Value noise on an integer lattice: a hashed value in [−1, 1] at each lattice point, blended
+// with a smoothstep.
+double latticeValue(int64_t i, int64_t k, uint64_t seed) {
+  uint64_t x = uint64_t(i) * 0x9E3779B97F4A7C15ULL ^ uint64_t(k) * 0xC2B2AE3D27D4EB4FULL ^
+               seed * 0x165667B19E3779F9ULL;
+  x ^= x >> 31, x *= 0xBF58476D1CE4E5B9ULL, x ^= x >> 29, x *= 0x94D049BB133111EBULL, x ^= x >> 32;
+  return double(x >> 11) * 0x1.0p-52 - 1.0;
+}
+
+double valueNoise(double x, double z, uint64_t seed) {
+  const double fx = std::floor(x), fz = std::floor(z);
+  const int64_t i = int64_t(fx), k = int64_t(fz);
+  auto smooth = [](double t) { return t * t * (3 - 2 * t); };
+  const double u = smooth(x - fx), w = smooth(z - fz);
+  const double a = latticeValue(i, k, seed), b = latticeValue(i + 1, k, seed);
+  const double c = latticeValue(i, k + 1, seed), d = latticeValue(i + 1, k + 1, seed);
+  return (1 - w) * ((1 - u) * a + u * b) + w * ((1 - u) * c + u * d);
+}
+
+double fbm(const NoiseSpec& n, double x, double z) {
+  double sum = 0, amp = n.amplitude, size = n.feature;
+  for (int o = 0; o < n.octaves; ++o, amp *= 0.5, size *= 0.5)
+    sum += amp * valueNoise(x / size, z / size, uint64_t(n.seed) * 131 + uint64_t(o));
+  return sum;
+}
+
+double smoothstep(double t) {
+  t = std::clamp(t, 0.0, 1.0);
+  return t * t * (3 - 2 * t);
+}
+
+// The procedural height at (x, z).
+double generated(const TerrainSpec& t, double x, double z) {
+  const double across = 2.0 * (z - 0.5 * t.length_z) / t.length_z;
+  const double tilt = t.slope * (t.length_x - x);
+  double h = 0;
+  if (t.kind == "slope") {
+    h = tilt;
+  } else if (t.kind == "valley") {
+    h = tilt + t.side_rise * across * across;
+  } else if (t.kind == "terraces") {
+    // The tilt's total drop in `levels` equal steps: flat treads, smooth risers.
+    const double u = (t.length_x - x) / t.length_x * t.levels;
+    const double k = std::min(std::floor(u), double(t.levels - 1));
+    const double step = t.slope * t.length_x / t.levels;
+    h = step * (k + smoothstep((u - k - (1 - t.riser)) / t.riser)) + t.side_rise * across * across;
+  } else if (t.kind == "bowl") {
+    const double cx = 0.5 * t.length_x, cz = 0.5 * t.length_z;
+    const double half = 0.5 * std::min(t.length_x, t.length_z), rim = t.rim * half;
+    const double r = std::hypot(x - cx, z - cz);
+    const double edge = std::hypot(std::max(cx, 0.0), std::max(cz, 0.0));  // farthest corner
+    if (r <= rim)
+      h = t.side_rise * (r / rim) * (r / rim);
+    else
+      h = t.side_rise * std::max(0.0, 1.0 - (r - rim) / (edge - rim));
+    h += tilt;
+  } else if (t.kind == "rolling") {
+    h = t.amplitude * std::sin(2 * M_PI * 3 * x / t.length_x) * std::cos(2 * M_PI * 2 * z / t.length_z);
+  } else if (t.kind == "fbm") {
+    h = tilt;
+  }
+  return h;
+}
+
+}  // namespace
+
+const std::vector<std::string>& terrainKinds() {
+  static const std::vector<std::string> k = {"flat", "slope", "valley", "bowl", "terraces",
+                                             "rolling", "fbm", "heightmap"};
+  return k;
+}
+
+Heightfield buildTerrain(const TerrainSpec& t) {
+  const int nx = std::max(2, int(std::round(t.length_x / t.cell)) + 1);
+  const int nz = std::max(2, int(std::round(t.length_z / t.cell)) + 1);
+  Heightfield hf(nx, nz, t.length_x / (nx - 1), t.length_z / (nz - 1));
+  if (t.kind == "heightmap") fillFromHeightmap(t, hf);
+  for (int k = 0; k < nz; ++k)
+    for (int i = 0; i < nx; ++i) {
+      const double x = i * hf.dx(), z = k * hf.dz();
+      double h = t.base;
+      if (t.kind == "heightmap")
+        h += hf.at(i, k) + t.slope * (t.length_x - x);
+      else
+        h += generated(t, x, z);
+      if (t.noise.amplitude != 0) h += fbm(t.noise, x, z);
+      hf.at(i, k) = h;
+    }
+  return hf;
+}
+
+}  // namespace scour
