@@ -6,7 +6,7 @@ packages=(
   build-essential cmake ninja-build pkg-config git python3
   libeigen3-dev libcli11-dev nlohmann-json3-dev libnanoflann-dev catch2
   libpng-dev libstb-dev
-  libglfw3-dev libglew-dev libimgui-dev libegl1-mesa-dev libosmesa6-dev xvfb xauth
+  libglfw3-dev libglew-dev libimgui-dev libegl1-mesa-dev libosmesa6-dev libgl1-mesa-dri xvfb xauth
 )
 missing=()
 for p in "${packages[@]}"; do

@@ -15,3 +15,12 @@ find_library(STB_LIBRARY stb REQUIRED)
 add_library(scour_stb INTERFACE)
 target_include_directories(scour_stb SYSTEM INTERFACE ${STB_INCLUDE_DIR})
 target_link_libraries(scour_stb INTERFACE ${STB_LIBRARY})
+
+# Rendering: GLEW, GLFW, EGL and OSMesa (Mesa). OSMesa is linked before libGL: its exported gl*
+# entry points go through Mesa's shared glapi dispatch, which serves EGL and GLX contexts of Mesa
+# as well, so the same binary renders through all three (src/render/context.cpp explains).
+find_package(OpenGL REQUIRED COMPONENTS OpenGL EGL)
+find_package(GLEW 2.1 REQUIRED)
+find_package(glfw3 3.3 REQUIRED)
+find_package(PkgConfig REQUIRED)
+pkg_check_modules(OSMESA REQUIRED IMPORTED_TARGET osmesa)

@@ -1,0 +1,33 @@
+#include "engine/frame.h"
+
+#include "engine/world.h"
+
+namespace scour {
+
+Frame makeFrame(const World& w) {
+  Frame f;
+  f.step = w.steps();
+  f.time = w.time();
+  const Fluid& fl = w.fluid();
+  f.position = fl.x;
+  f.concentration.resize(fl.size());
+  f.speed.resize(fl.size());
+  for (size_t i = 0; i < fl.size(); ++i) {
+    f.concentration[i] = float(w.concentration(i));
+    f.speed[i] = fl.v[i].norm();
+  }
+  const SimParams& p = w.params();
+  f.spacing = float(p.spacing);
+  f.support = float(p.support());
+  f.mass = float(p.particleMass());
+  f.rest_density = float(p.rest_density);
+  const Heightfield& hf = w.terrain();
+  f.nx = hf.nx(), f.nz = hf.nz();
+  f.dx = hf.dx(), f.dz = hf.dz(), f.x0 = hf.x0(), f.z0 = hf.z0();
+  f.height.assign(hf.heights().begin(), hf.heights().end());
+  const std::vector<double> change = w.heightChange();
+  f.change.assign(change.begin(), change.end());
+  return f;
+}
+
+}  // namespace scour
