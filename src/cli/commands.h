@@ -21,6 +21,7 @@ struct InputError : std::runtime_error {
 using Command = std::function<int()>;
 Command addRunCommand(CLI::App& app);
 Command addBenchCommand(CLI::App& app);
+Command addRenderCommand(CLI::App& app);
 
 /// Shared by run and bench: builds the scene and applies `--set key=value` overrides.
 Scene loadScene(const std::string& name, double scale, long particles,

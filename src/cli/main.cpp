@@ -1,4 +1,4 @@
-// scour: the one binary. Subcommands: run, bench, presets (later: the window, study, stress).
+// scour: the one binary. Subcommands: run, bench, render, presets (later: the window, study, stress).
 #include <cstdio>
 #include <iostream>
 
@@ -10,6 +10,7 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   Command run = addRunCommand(app);
   Command bench = addBenchCommand(app);
+  Command render = addRenderCommand(app);
   CLI::App* presets = app.add_subcommand("presets", "List the built-in scenes, one per line");
   try {
     app.parse(argc, argv);
@@ -28,6 +29,7 @@ int main(int argc, char** argv) {
     }
     if (app.got_subcommand("run")) return run();
     if (app.got_subcommand("bench")) return bench();
+    if (app.got_subcommand("render")) return render();
   } catch (const InputError& e) {
     std::cerr << "error: " << e.what() << "\n";
     return kExitInput;

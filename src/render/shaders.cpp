@@ -3,6 +3,7 @@
 #include "render/shaders.h"
 
 #include <stdexcept>
+#include <utility>
 
 #define SCOUR_STR2(x) #x
 #define SCOUR_STR(x) SCOUR_STR2(x)
@@ -16,16 +17,40 @@
 
 SCOUR_SHADER(splat)
 SCOUR_SHADER(compact)
-SCOUR_SHADER(march)
 SCOUR_SHADER(finish)
+SCOUR_SHADER(march)
+SCOUR_SHADER(terrain_vs)
+SCOUR_SHADER(terrain_fs)
+SCOUR_SHADER(water_vs)
+SCOUR_SHADER(water_fs)
+SCOUR_SHADER(light_terrain_fs)
+SCOUR_SHADER(light_water_fs)
+SCOUR_SHADER(photon_vs)
+SCOUR_SHADER(photon_fs)
+SCOUR_SHADER(particles_vs)
+SCOUR_SHADER(particles_fs)
 
 namespace scour {
 
 const char* shaderSource(const std::string& name) {
-  if (name == "splat") return scour_shader_splat;
-  if (name == "compact") return scour_shader_compact;
-  if (name == "march") return scour_shader_march;
-  if (name == "finish") return scour_shader_finish;
+  static const std::pair<const char*, const char*> table[] = {
+      {"splat", scour_shader_splat},
+      {"compact", scour_shader_compact},
+      {"finish", scour_shader_finish},
+      {"march", scour_shader_march},
+      {"terrain_vs", scour_shader_terrain_vs},
+      {"terrain_fs", scour_shader_terrain_fs},
+      {"water_vs", scour_shader_water_vs},
+      {"water_fs", scour_shader_water_fs},
+      {"light_terrain_fs", scour_shader_light_terrain_fs},
+      {"light_water_fs", scour_shader_light_water_fs},
+      {"photon_vs", scour_shader_photon_vs},
+      {"photon_fs", scour_shader_photon_fs},
+      {"particles_vs", scour_shader_particles_vs},
+      {"particles_fs", scour_shader_particles_fs},
+  };
+  for (const auto& [n, src] : table)
+    if (name == n) return src;
   throw std::invalid_argument("unknown shader '" + name + "'");
 }
 

@@ -83,8 +83,9 @@ void WaterSurface::update(const Frame& f) {
                             GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
   const GLuint header[4] = {0, 0, 1, 1};
   glNamedBufferSubData(list_, 0, sizeof header, header);
-  // The vertex buffer: a few triangles per particle is plenty for water; capped.
-  const size_t want = std::min(s_.max_triangles, std::max<size_t>(65536, 4 * n)) * 3;
+  // The vertex buffer: 8 triangles per particle covers a pool a few particles deep (a flat
+  // surface cut into tetrahedra gives about 8 per cell); growIfOverflowed corrects the rest.
+  const size_t want = std::min(s_.max_triangles, std::max<size_t>(65536, 8 * n)) * 3;
   grow(vertices_, vertexCap_, want, 8 * sizeof(float));
 
   // 1. splat (and mark the occupied blocks)
@@ -148,6 +149,14 @@ void WaterSurface::march() {
     const GLuint nb = GLuint(grid_.blockCount());
     glDispatchCompute(std::min(nb, kRow), (nb + kRow - 1) / kRow, 1);
   }
+}
+
+bool WaterSurface::growIfOverflowed() {
+  const SurfaceStats st = readStats();
+  if (st.dropped == 0 || vertexCap_ >= s_.max_triangles * 3) return false;
+  const size_t want = std::min(s_.max_triangles, size_t(double(st.triangles + st.dropped) * 1.25)) * 3;
+  grow(vertices_, vertexCap_, want, 8 * sizeof(float));
+  return true;
 }
 
 WaterSurface::Timings WaterSurface::readTimings() const {

@@ -22,11 +22,11 @@
 namespace scour {
 
 struct SurfaceSettings {
-  double cell_over_spacing = 0.5;  ///< grid cell = this × Δs (coarsened to fit max_nodes)
+  double cell_over_spacing = 0.75;  ///< grid cell = this × Δs (coarsened to fit max_nodes)
   double iso = 0.5;                ///< iso level, as a fraction of ρ0
   bool occupancy = true;           ///< visit only occupied blocks
   size_t max_nodes = size_t(1) << 25;      ///< density grid nodes at most (128 MB)
-  size_t max_triangles = size_t(1) << 22;  ///< vertex buffer capacity at most
+  size_t max_triangles = size_t(1) << 23;  ///< vertex buffer capacity at most (800 MB)
 };
 
 /// The density grid's geometry (and, read back, its values in fixed point).
@@ -60,6 +60,9 @@ class WaterSurface {
 
   /// Splats, marks and extracts the surface of the frame's particles.
   void update(const Frame& f);
+  /// After an update that lost triangles to a full vertex buffer: grows the buffer to fit them
+  /// and returns true (update again). Reads back a few bytes; for headless pictures and tests.
+  bool growIfOverflowed();
 
   const SurfaceSettings& settings() const { return s_; }
   void setSettings(const SurfaceSettings& s) { s_ = s; }

@@ -1,0 +1,126 @@
+// scour render: one picture of a checkpoint or of a scene's start; and the FrameWriter that
+// `scour run --frames` uses.
+#include <cstdio>
+#include <iostream>
+
+#include "cli/commands.h"
+#include "cli/render_options.h"
+#include "render/context.h"
+#include "render/renderer.h"
+#include "scene/checkpoint.h"
+
+namespace scour {
+
+void addRenderOptions(CLI::App* c, RenderOptions& o) {
+  c->add_option("--gl", o.gl, "GL context: egl (default), osmesa, window");
+  c->add_option("--size", o.size, "Picture size WxH (default 960x540)");
+  c->add_option("--terrain", o.terrain, "Terrain colours: erosion (default), shaded, sediment");
+  c->add_option("--particles", o.particles, "Particle view: off (default), sediment, speed");
+  c->add_flag("--no-water", o.noWater, "Leave out the water surface");
+  c->add_flag("--no-reflections", o.noReflections, "Water without cube-map reflections");
+  c->add_flag("--no-refraction", o.noRefraction, "Water without refraction");
+  c->add_flag("--no-caustics", o.noCaustics, "No caustics under the water");
+  c->add_option("--camera", o.camera, "Eye and target: ex ey ez tx ty tz [m]")->expected(6);
+}
+
+struct FrameWriter::Impl {
+  std::unique_ptr<GlContext> context;
+  std::unique_ptr<Renderer> renderer;
+  RenderSettings settings;
+  std::vector<float> camera;
+};
+
+FrameWriter::FrameWriter(const RenderOptions& o) : impl_(std::make_unique<Impl>()) {
+  int w = 0, h = 0;
+  char x = 0, extra = 0;
+  if (std::sscanf(o.size.c_str(), "%d%c%d%c", &w, &x, &h, &extra) != 3 || x != 'x' || w < 16 ||
+      h < 16 || w > 8192 || h > 8192)
+    throw InputError("--size: expected WxH with each side in [16, 8192], found '" + o.size + "'");
+  RenderSettings& s = impl_->settings;
+  if (o.terrain == "erosion") s.terrain = RenderSettings::Terrain::kErosion;
+  else if (o.terrain == "shaded") s.terrain = RenderSettings::Terrain::kShaded;
+  else if (o.terrain == "sediment") s.terrain = RenderSettings::Terrain::kSediment;
+  else throw InputError("--terrain: expected erosion, shaded or sediment, found '" + o.terrain + "'");
+  if (o.particles == "off") s.particles = RenderSettings::Particles::kOff;
+  else if (o.particles == "sediment") s.particles = RenderSettings::Particles::kSediment;
+  else if (o.particles == "speed") s.particles = RenderSettings::Particles::kSpeed;
+  else throw InputError("--particles: expected off, sediment or speed, found '" + o.particles + "'");
+  s.water = !o.noWater;
+  s.reflections = !o.noReflections;
+  s.refraction = !o.noRefraction;
+  s.caustics = !o.noCaustics;
+  for (float v : o.camera)
+    if (!std::isfinite(v)) throw InputError("--camera: expected 6 finite numbers");
+  impl_->camera = o.camera;
+  GlBackend backend;
+  try {
+    backend = parseGlBackend(o.gl);
+  } catch (const std::invalid_argument& e) {
+    throw InputError(std::string("--gl: ") + e.what());
+  }
+  impl_->context = createGlContext(backend, w, h);
+  impl_->renderer = std::make_unique<Renderer>(w, h);
+}
+
+FrameWriter::~FrameWriter() = default;
+
+void FrameWriter::write(const Frame& f, const std::string& path) {
+  Camera c = overviewCamera(f);
+  if (impl_->camera.size() == 6) {
+    c.eye = {impl_->camera[0], impl_->camera[1], impl_->camera[2]};
+    c.target = {impl_->camera[3], impl_->camera[4], impl_->camera[5]};
+  }
+  impl_->renderer->render(f, c, impl_->settings);
+  for (int tries = 0; tries < 3 && impl_->renderer->surface().growIfOverflowed(); ++tries)
+    impl_->renderer->render(f, c, impl_->settings);  // the whole surface, not a part of it
+  impl_->renderer->writePng(path);
+  if (impl_->context->errors() > 0)
+    throw GlError("GL error while rendering " + path + ": " + impl_->context->lastError());
+}
+
+namespace {
+
+struct RenderCommandOptions {
+  std::string source, out;
+  RenderOptions render;
+  double scale = 1.0;
+};
+
+int renderPicture(const RenderCommandOptions& o) {
+  Scene scene;
+  std::unique_ptr<World> world;
+  const bool checkpoint = o.source.size() > 5 && o.source.substr(o.source.size() - 5) == ".ckpt";
+  try {
+    if (checkpoint) {
+      world = std::make_unique<World>(resumeWorld(readCheckpoint(o.source), scene));
+    } else {
+      scene = loadScene(o.source, o.scale, 0, {});
+      world = std::make_unique<World>(scene.desc);
+    }
+  } catch (const CheckpointError& e) {
+    throw InputError(e.what());
+  } catch (const std::invalid_argument& e) {
+    throw InputError(o.source + ": " + e.what());
+  }
+  if (o.out.size() < 5 || o.out.substr(o.out.size() - 4) != ".png")
+    throw InputError("--out: expected a .png file name, found '" + o.out + "'");
+  FrameWriter writer(o.render);
+  writer.write(makeFrame(*world), o.out);
+  std::cout << "rendered step " << world->steps() << " (" << world->fluid().size() << " particles) to "
+            << o.out << "\n";
+  return kExitOk;
+}
+
+}  // namespace
+
+Command addRenderCommand(CLI::App& app) {
+  auto o = std::make_shared<RenderCommandOptions>();
+  CLI::App* c = app.add_subcommand("render", "Render one picture of a checkpoint or of a scene's start");
+  c->add_option("source", o->source, "A checkpoint (.ckpt), a built-in scene or a scene file")->required();
+  c->add_option("--out", o->out, "The picture (.png)")->required();
+  c->add_option("--scale", o->scale, "Scale the preset's particle count")->check(kPositive);
+  addRenderOptions(c, o->render);
+  return [o] { return renderPicture(*o); };
+}
+
+}  // namespace scour

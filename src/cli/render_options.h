@@ -1,0 +1,38 @@
+#pragma once
+// The picture options shared by `scour render` and `scour run --frames`.
+#include <CLI/CLI.hpp>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "engine/frame.h"
+
+namespace scour {
+
+struct RenderOptions {
+  std::string gl = "egl";
+  std::string size = "960x540";
+  std::string terrain = "erosion";
+  std::string particles = "off";
+  bool noWater = false, noReflections = false, noRefraction = false, noCaustics = false;
+  std::vector<float> camera;  ///< eye x y z, target x y z (empty: the overview)
+};
+
+/// Registers --gl, --size, --terrain, --particles, --no-water, --no-reflections,
+/// --no-refraction, --no-caustics and --camera on a subcommand.
+void addRenderOptions(CLI::App* c, RenderOptions& o);
+
+/// A GL context and renderer made from the options; writes pictures of frames. The options are
+/// checked when it is made (InputError naming the flag).
+class FrameWriter {
+ public:
+  explicit FrameWriter(const RenderOptions& o);
+  ~FrameWriter();
+  void write(const Frame& f, const std::string& path);
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace scour
