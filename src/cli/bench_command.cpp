@@ -7,6 +7,8 @@
 #include <iostream>
 
 #include "cli/commands.h"
+#include "cli/render_options.h"
+#include "render/renderer.h"
 #include "scene/scene_json.h"
 
 namespace scour {
@@ -25,6 +27,8 @@ struct BenchOptions {
   bool json = false;
   bool erosion = false;
   bool ablation = false;
+  bool render = false;
+  std::string size = "960x540";
   std::vector<std::string> sets;
 };
 
@@ -89,10 +93,81 @@ int ablation(const BenchOptions& o, const Scene& scene) {
   return kExitOk;
 }
 
+// The renderer's passes at a scene's size: GPU time (timer queries; CPU time on llvmpipe) of
+// splatting, listing the occupied blocks and marching tetrahedra, and the wall time of shading,
+// with the occupancy grid and without it.
+int benchRender(const BenchOptions& o, const Scene& scene) {
+  World world(scene.desc);
+  for (long s = 0; s < o.warmup; ++s) world.step();
+  const Frame frame = makeFrame(world);
+  RenderOptions ro;
+  ro.size = o.size;
+  FrameWriter check(ro);  // validates --size and makes the context
+  int w = 0, h = 0;
+  std::sscanf(o.size.c_str(), "%dx%d", &w, &h);
+  Renderer r(w, h);
+  const Camera cam = overviewCamera(frame);
+  struct Result {
+    std::vector<double> splat, occupancy, march, surface, shading, frame;
+    SurfaceStats stats;
+  } res[2];
+  for (int pass = 0; pass < 2; ++pass) {
+    RenderSettings s;
+    s.surface.occupancy = pass == 0;
+    r.render(frame, cam, s);
+    while (r.surface().growIfOverflowed()) r.render(frame, cam, s);
+    for (long k = 0; k < o.steps; ++k) {
+      glFinish();
+      auto t0 = std::chrono::steady_clock::now();
+      r.render(frame, cam, s);
+      glFinish();
+      const double total = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+      const WaterSurface::Timings t = r.surface().readTimings();
+      const double surface = t.splat + t.occupancy + t.march;
+      res[pass].splat.push_back(t.splat), res[pass].occupancy.push_back(t.occupancy);
+      res[pass].march.push_back(t.march), res[pass].surface.push_back(surface);
+      res[pass].shading.push_back(std::max(total - surface, 0.0)), res[pass].frame.push_back(total);
+    }
+    res[pass].stats = r.surface().readStats();
+  }
+  json j;
+  j["scene"] = o.scene;
+  j["particles"] = frame.particles();
+  j["size"] = o.size;
+  j["frames"] = o.steps;
+  j["grid_nodes"] = r.surface().grid().nodeCount();
+  j["triangles"] = res[0].stats.triangles;
+  j["blocks"] = res[0].stats.blocks;
+  j["occupied_blocks"] = res[0].stats.occupied;
+  const char* names[2] = {"with_occupancy", "without_occupancy"};
+  for (int p = 0; p < 2; ++p)
+    j[names[p]] = {{"splat_s", median(res[p].splat)}, {"occupancy_s", median(res[p].occupancy)},
+                   {"march_s", median(res[p].march)}, {"surface_s", median(res[p].surface)},
+                   {"shading_s", median(res[p].shading)}, {"frame_s", median(res[p].frame)}};
+  j["speedup_finding_iso_cubes"] = median(res[1].march) / std::max(median(res[0].march) + median(res[0].occupancy), 1e-12);
+  j["speedup_isosurface_step"] = median(res[1].surface) / std::max(median(res[0].surface), 1e-12);
+  if (o.json) {
+    std::cout << j.dump(2) << "\n";
+    return kExitOk;
+  }
+  std::printf("render bench %s: %zu particles, %s, %ld frames, grid %zu nodes, %ld of %ld blocks occupied, %ld triangles\n",
+              o.scene.c_str(), frame.particles(), o.size.c_str(), o.steps, r.surface().grid().nodeCount(),
+              res[0].stats.occupied, res[0].stats.blocks, res[0].stats.triangles);
+  std::printf("  median seconds per frame   splat      occupancy  march      shading    frame\n");
+  for (int p = 0; p < 2; ++p)
+    std::printf("  %-24s %10.5f %10.5f %10.5f %10.5f %10.5f\n", names[p], median(res[p].splat),
+                median(res[p].occupancy), median(res[p].march), median(res[p].shading), median(res[p].frame));
+  std::printf("occupancy speed-up: finding iso-cubes %.1fx, whole isosurface step %.1fx (paper: 20x and 3x)\n",
+              double(j["speedup_finding_iso_cubes"]), double(j["speedup_isosurface_step"]));
+  std::printf("(GPU times from timer queries; on llvmpipe the GPU is the CPU)\n");
+  return kExitOk;
+}
+
 int bench(const BenchOptions& o) {
   setThreads(o.threads);
   Scene scene = loadScene(o.scene, o.scale, o.particles, o.sets);
   if (o.ablation) return ablation(o, scene);
+  if (o.render) return benchRender(o, scene);
   if (o.erosion) {
     // Every sediment pass at full work: all effects on, and every particle already carrying
     // sediment (so no pair is skipped as empty).
@@ -188,6 +263,9 @@ Command addBenchCommand(CLI::App& app) {
   c->add_flag("--json", o->json, "One JSON object on stdout");
   c->add_flag("--erosion", o->erosion,
               "Turn on erosion, settling, diffusion and deposition, with C = 0.01 everywhere");
+  c->add_flag("--render", o->render,
+              "Time the renderer instead: splat, occupancy, march, shading, with and without the occupancy grid");
+  c->add_option("--size", o->size, "Picture size for --render (default 960x540)");
   c->add_flag("--ablation", o->ablation,
               "Compare all effects, erosion off and SPH only, stepped in turn");
   return [o] { return bench(*o); };

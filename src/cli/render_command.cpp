@@ -21,6 +21,8 @@ void addRenderOptions(CLI::App* c, RenderOptions& o) {
   c->add_flag("--no-refraction", o.noRefraction, "Water without refraction");
   c->add_flag("--no-caustics", o.noCaustics, "No caustics under the water");
   c->add_option("--camera", o.camera, "Eye and target: ex ey ez tx ty tz [m]")->expected(6);
+  c->add_option("--surface-cell", o.surfaceCell, "Density grid cell over the particle spacing (default 0.75)")
+      ->check(CLI::Range(0.1, 8.0));
 }
 
 struct FrameWriter::Impl {
@@ -52,6 +54,7 @@ FrameWriter::FrameWriter(const RenderOptions& o) : impl_(std::make_unique<Impl>(
   for (float v : o.camera)
     if (!std::isfinite(v)) throw InputError("--camera: expected 6 finite numbers");
   impl_->camera = o.camera;
+  s.surface.cell_over_spacing = o.surfaceCell;
   GlBackend backend;
   try {
     backend = parseGlBackend(o.gl);
@@ -63,6 +66,10 @@ FrameWriter::FrameWriter(const RenderOptions& o) : impl_(std::make_unique<Impl>(
 }
 
 FrameWriter::~FrameWriter() = default;
+
+void FrameWriter::setSceneCamera(const Eigen::Vector3f& eye, const Eigen::Vector3f& target) {
+  if (impl_->camera.empty()) impl_->camera = {eye.x(), eye.y(), eye.z(), target.x(), target.y(), target.z()};
+}
 
 void FrameWriter::write(const Frame& f, const std::string& path) {
   Camera c = overviewCamera(f);
@@ -105,6 +112,8 @@ int renderPicture(const RenderCommandOptions& o) {
   if (o.out.size() < 5 || o.out.substr(o.out.size() - 4) != ".png")
     throw InputError("--out: expected a .png file name, found '" + o.out + "'");
   FrameWriter writer(o.render);
+  if (scene.spec.has_camera)
+    writer.setSceneCamera(scene.spec.camera_eye.cast<float>(), scene.spec.camera_target.cast<float>());
   writer.write(makeFrame(*world), o.out);
   std::cout << "rendered step " << world->steps() << " (" << world->fluid().size() << " particles) to "
             << o.out << "\n";

@@ -15,7 +15,8 @@ struct RenderOptions {
   std::string terrain = "erosion";
   std::string particles = "off";
   bool noWater = false, noReflections = false, noRefraction = false, noCaustics = false;
-  std::vector<float> camera;  ///< eye x y z, target x y z (empty: the overview)
+  std::vector<float> camera;  ///< eye x y z, target x y z (empty: the scene's, or the overview)
+  double surfaceCell = 0.75;  ///< density grid cell / Δs
 };
 
 /// Registers --gl, --size, --terrain, --particles, --no-water, --no-reflections,
@@ -29,6 +30,8 @@ class FrameWriter {
   explicit FrameWriter(const RenderOptions& o);
   ~FrameWriter();
   void write(const Frame& f, const std::string& path);
+  /// The scene's camera, used unless --camera was given.
+  void setSceneCamera(const Eigen::Vector3f& eye, const Eigen::Vector3f& target);
 
  private:
   struct Impl;

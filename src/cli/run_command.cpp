@@ -12,6 +12,7 @@
 #include <sstream>
 
 #include "cli/commands.h"
+#include "cli/render_options.h"
 #include "scene/checkpoint.h"
 #include "scene/output.h"
 #include "scene/scene_json.h"
@@ -83,7 +84,15 @@ struct RunOptions {
   std::vector<std::string> sets;
   long checkpointEvery = 0;
   std::string resume;
+  long framesEvery = 0;
+  RenderOptions render;
 };
+
+std::string frameName(long step) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "frame_%06ld.png", step);
+  return buf;
+}
 
 std::string checkpointName(long step) {
   char buf[64];
@@ -136,6 +145,13 @@ int runScene(const RunOptions& o) {
       throw InputError(std::string("scene '") + o.scene + "': " + e.what());
     }
   }
+  // Pictures: the GL context and renderer are made (and their options checked) before any output.
+  std::unique_ptr<FrameWriter> frames;
+  if (o.framesEvery > 0) {
+    frames = std::make_unique<FrameWriter>(o.render);
+    if (scene.spec.has_camera)
+      frames->setSceneCamera(scene.spec.camera_eye.cast<float>(), scene.spec.camera_target.cast<float>());
+  }
   std::error_code ec;
   fs::create_directories(o.out, ec);
   if (ec || !fs::is_directory(o.out))
@@ -180,6 +196,7 @@ int runScene(const RunOptions& o) {
     }
   };
   if (o.particlesEvery > 0) writeParticlesPly(dir / plyName(0), world->fluid(), world->params().particleVolume(), 0.0);
+  if (frames) frames->write(makeFrame(*world), (dir / frameName(world->steps())).string());
   std::string failure;
   try {
     while (o.steps > 0 ? world->steps() < o.steps : world->time() < o.time - 1e-12) {
@@ -188,6 +205,8 @@ int runScene(const RunOptions& o) {
         writeParticlesPly(dir / plyName(world->steps()), world->fluid(),
                           world->params().particleVolume(), world->time());
       if (world->steps() % o.metricsEvery == 0) metricsRow(st.dt, st.max_speed);
+      if (frames && world->steps() % o.framesEvery == 0)
+        frames->write(makeFrame(*world), (dir / frameName(world->steps())).string());
       if (o.checkpointEvery > 0 && world->steps() % o.checkpointEvery == 0)
         writeCheckpoint((dir / checkpointName(world->steps())).string(), scene, *world);
       auto now = std::chrono::steady_clock::now();
@@ -287,6 +306,9 @@ Command addRunCommand(CLI::App& app) {
   c->add_option("--checkpoint-every", o->checkpointEvery,
                 "Write checkpoint_<step>.ckpt every K steps (resume with --resume)")
       ->check(kPositive);
+  c->add_option("--frames", o->framesEvery, "Render frame_<step>.png every K steps (and at the start)")
+      ->check(kPositive);
+  addRenderOptions(c, o->render);
   auto* resume = c->add_option("--resume", o->resume,
                                "Continue from a checkpoint (--steps/--time: the total to reach)");
   resume->excludes(scene);

@@ -101,6 +101,9 @@ struct SceneSpec {
   std::vector<Sink> sinks;
   std::vector<Rain> rain;
   std::vector<SedimentMark> sediment;
+  /// The view pictures are taken from (`scour run --frames`, `scour render`); none: an overview.
+  bool has_camera = false;
+  Eigen::Vector3d camera_eye = Eigen::Vector3d::Zero(), camera_target = Eigen::Vector3d::Zero();
 };
 
 /// A built scene: its spec and the engine's description made from it.

@@ -238,6 +238,7 @@ json sceneToJson(const Scene& scene) {
                     {"stop", std::isfinite(r.stop) ? json(r.stop) : json(nullptr)},
                     {"seed", r.seed}});
   j["rain"] = rain;
+  if (s.has_camera) j["camera"] = {{"eye", vec(s.camera_eye)}, {"target", vec(s.camera_target)}};
   // What the spec built to (not read back): the grid and the particle count.
   const Heightfield& hf = scene.desc.terrain;
   j["built"] = {{"particles", scene.desc.particles.size()},
@@ -453,6 +454,15 @@ SceneSpec specFromJson(const json& j, const std::string& file) {
     r.seed = uint64_t(f.integer("seed", 1, 0, 9007199254740991LL));
     f.finish();
     s.rain.push_back(r);
+  }
+  if (top.has("camera")) {
+    Fields c(top.raw("camera"), "camera", file);
+    s.has_camera = true;
+    s.camera_eye = c.vec3("eye");
+    s.camera_target = c.vec3("target");
+    c.finish();
+    if ((s.camera_eye - s.camera_target).norm() == 0)
+      throw SceneError(file + ": camera.target: must differ from camera.eye");
   }
   if (top.has("built")) top.raw("built");  // written by sceneToJson for people; not read back
   top.finish();
