@@ -11,8 +11,9 @@ layout(std430, binding = 1) readonly buffer Density { uint density[]; };
 layout(std430, binding = 3) readonly buffer BlockList { uint count; uint dispatch[3]; uint block[]; };
 struct Vertex { vec4 position; vec4 normal; };
 layout(std430, binding = 4) buffer Vertices { Vertex vertex[]; };
-// DrawArraysIndirectCommand, then the number of triangles that did not fit.
-layout(std430, binding = 5) buffer Draw { uint vertexCount; uint instanceCount; uint first; uint baseInstance; uint dropped; };
+// DrawArraysIndirectCommand, then the number of triangles that did not fit, then the number of
+// iso-cubes (cells the surface crosses) found in count-only mode.
+layout(std430, binding = 5) buffer Draw { uint vertexCount; uint instanceCount; uint first; uint baseInstance; uint dropped; uint isoCubes; };
 
 uniform vec3 origin;
 uniform float cell;
@@ -22,6 +23,7 @@ uniform float iso;        // in fixed-point density units
 uniform uint maxVertices;
 uniform bool useList;     // false: every block (no occupancy grid)
 uniform uint blockCount;  // without the list: the number of blocks
+uniform bool countOnly;   // only find the iso-cubes (the bench times this alone)
 const uint kRow = 32768u; // work groups per row of the dispatch (finish.glsl)
 
 int nodeIndex(ivec3 n) { return (n.z * nodes.y + n.y) * nodes.x + n.x; }
@@ -71,6 +73,7 @@ void main() {
     if (val[k] > iso) ++inside;
   }
   if (inside == 0 || inside == 8) return;
+  if (countOnly) { atomicAdd(isoCubes, 1u); return; }
   for (int t = 0; t < 6; ++t) {
     int v[4] = int[4](tetra[4 * t], tetra[4 * t + 1], tetra[4 * t + 2], tetra[4 * t + 3]);
     int in_[4]; int out_[4]; int ni = 0, no = 0;

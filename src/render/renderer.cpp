@@ -75,7 +75,7 @@ Camera overviewCamera(const Frame& f) {
   Camera c;
   c.target = {float(f.x0) + 0.5f * lx, lo + 0.3f * (hi - lo), float(f.z0) + 0.5f * lz};
   const float size = std::max(lx, lz);
-  c.eye = c.target + Eigen::Vector3f(-0.45f * lx, 0.75f * size + (hi - lo), 0.95f * lz);
+  c.eye = c.target + 1.2f * Eigen::Vector3f(-0.45f * lx, 0.75f * size + (hi - lo), 0.95f * lz);
   return c;
 }
 

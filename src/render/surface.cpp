@@ -1,6 +1,7 @@
 #include "render/surface.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 
 namespace scour {
@@ -23,7 +24,7 @@ WaterSurface::WaterSurface(SurfaceSettings s)
       finish_(Program::compute("finish")),
       march_(Program::compute("march")) {
   glCreateBuffers(1, &draw_);
-  const GLuint empty[5] = {0, 1, 0, 0, 0};
+  const GLuint empty[6] = {0, 1, 0, 0, 0, 0};
   glNamedBufferData(draw_, sizeof empty, empty, GL_DYNAMIC_DRAW);
   glCreateQueries(GL_TIME_ELAPSED, 4, queries_);
 }
@@ -57,7 +58,7 @@ void WaterSurface::layout(const Frame& f) {
 }
 
 void WaterSurface::update(const Frame& f) {
-  const GLuint emptyDraw[5] = {0, 1, 0, 0, 0};
+  const GLuint emptyDraw[6] = {0, 1, 0, 0, 0, 0};
   glNamedBufferSubData(draw_, 0, sizeof emptyDraw, emptyDraw);
   timed_ = false;
   if (f.particles() == 0) {
@@ -105,9 +106,20 @@ void WaterSurface::update(const Frame& f) {
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, list_);
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, vertices_);
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 5, draw_);
+  using Clock = std::chrono::steady_clock;
+  auto mark = Clock::now();
+  auto lap = [&](int k) {
+    if (!s_.profile) return;
+    glFinish();
+    const auto now = Clock::now();
+    wall_[k] = std::chrono::duration<double>(now - mark).count();
+    mark = now;
+  };
+  if (s_.profile) glFinish(), mark = Clock::now();
   glBeginQuery(GL_TIME_ELAPSED, queries_[0]);
   glDispatchCompute(GLuint((n + 127) / 128), 1, 1);
   glEndQuery(GL_TIME_ELAPSED);
+  lap(0);
   glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
 
   // 2. list the occupied blocks
@@ -122,17 +134,19 @@ void WaterSurface::update(const Frame& f) {
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
   }
   glEndQuery(GL_TIME_ELAPSED);
+  lap(1);
 
   // 3. march
   glBeginQuery(GL_TIME_ELAPSED, queries_[2]);
   march();
   glEndQuery(GL_TIME_ELAPSED);
+  lap(2);
   glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT |
                   GL_VERTEX_ATTRIB_ARRAY_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
   timed_ = true;
 }
 
-void WaterSurface::march() {
+void WaterSurface::march(bool countOnly) {
   march_.use();
   glUniform3f(march_.location("origin"), grid_.origin.x(), grid_.origin.y(), grid_.origin.z());
   glUniform1f(march_.location("cell"), grid_.cell);
@@ -142,6 +156,7 @@ void WaterSurface::march() {
   glUniform1ui(march_.location("maxVertices"), GLuint(vertexCap_));
   glUniform1i(march_.location("useList"), s_.occupancy ? 1 : 0);
   glUniform1ui(march_.location("blockCount"), GLuint(grid_.blockCount()));
+  glUniform1i(march_.location("countOnly"), countOnly ? 1 : 0);
   if (s_.occupancy) {
     glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, list_);
     glDispatchComputeIndirect(sizeof(GLuint));  // after the count
@@ -149,6 +164,26 @@ void WaterSurface::march() {
     const GLuint nb = GLuint(grid_.blockCount());
     glDispatchCompute(std::min(nb, kRow), (nb + kRow - 1) / kRow, 1);
   }
+}
+
+long WaterSurface::countIsoCubes(double* seconds) {
+  if (grid_.blockCount() == 0) return 0;
+  // The same inputs as the last update's march; only the iso-cube counter changes.
+  const GLuint zero = 0;
+  glNamedBufferSubData(draw_, 5 * sizeof(GLuint), sizeof zero, &zero);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, density_);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, list_);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, vertices_);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 5, draw_);
+  glFinish();
+  const auto t0 = std::chrono::steady_clock::now();
+  march(true);
+  glFinish();
+  if (seconds) *seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+  GLuint count = 0;
+  glGetNamedBufferSubData(draw_, 5 * sizeof(GLuint), sizeof count, &count);
+  return long(count);
 }
 
 bool WaterSurface::growIfOverflowed() {
@@ -162,6 +197,10 @@ bool WaterSurface::growIfOverflowed() {
 WaterSurface::Timings WaterSurface::readTimings() const {
   Timings t;
   if (!timed_) return t;
+  if (s_.profile) {
+    t.splat = wall_[0], t.occupancy = wall_[1], t.march = wall_[2];
+    return t;
+  }
   GLuint64 ns[3] = {0, 0, 0};
   for (int k = 0; k < 3; ++k) glGetQueryObjectui64v(queries_[k], GL_QUERY_RESULT, &ns[k]);
   t.splat = double(ns[0]) * 1e-9, t.occupancy = double(ns[1]) * 1e-9, t.march = double(ns[2]) * 1e-9;

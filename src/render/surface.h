@@ -27,6 +27,9 @@ struct SurfaceSettings {
   bool occupancy = true;           ///< visit only occupied blocks
   size_t max_nodes = size_t(1) << 25;      ///< density grid nodes at most (128 MB)
   size_t max_triangles = size_t(1) << 23;  ///< vertex buffer capacity at most (800 MB)
+  /// Wait for each step to finish and time it on the wall clock (bench): llvmpipe's timer
+  /// queries read 0. Stalls the pipeline, so off by default.
+  bool profile = false;
 };
 
 /// The density grid's geometry (and, read back, its values in fixed point).
@@ -63,6 +66,9 @@ class WaterSurface {
   /// After an update that lost triangles to a full vertex buffer: grows the buffer to fit them
   /// and returns true (update again). Reads back a few bytes; for headless pictures and tests.
   bool growIfOverflowed();
+  /// Runs the march over the last update's grid in count-only mode: finds the iso-cubes (cells
+  /// the surface crosses) without making triangles. Returns their number and the wall time.
+  long countIsoCubes(double* seconds);
 
   const SurfaceSettings& settings() const { return s_; }
   void setSettings(const SurfaceSettings& s) { s_ = s; }
@@ -82,7 +88,7 @@ class WaterSurface {
  private:
   void layout(const Frame& f);
   void reserve(size_t particles);
-  void march();
+  void march(bool countOnly = false);
 
   SurfaceSettings s_;
   DensityGrid grid_;
@@ -91,6 +97,7 @@ class WaterSurface {
   size_t particleCap_ = 0, nodeCap_ = 0, blockCap_ = 0, listCap_ = 0, vertexCap_ = 0;
   GLuint queries_[4] = {0, 0, 0, 0};
   bool timed_ = false;
+  double wall_[3] = {0, 0, 0};
 };
 
 }  // namespace scour

@@ -107,6 +107,11 @@ TEST_CASE("the occupancy grid changes nothing in the mesh and visits fewer cells
   CHECK(canonical(with.readTriangles()) == canonical(without.readTriangles()));
   CHECK(a.occupied < a.blocks);
   CHECK(b.occupied == b.blocks);
+  // The same iso-cubes are found either way, and the mesh was left as it was.
+  const long cubesWith = with.countIsoCubes(nullptr), cubesWithout = without.countIsoCubes(nullptr);
+  CHECK(cubesWith > 0);
+  CHECK(cubesWith == cubesWithout);
+  CHECK(with.readStats().triangles == a.triangles);
   std::printf("occupancy grid: %ld of %ld blocks visited (%.1f%%), %ld triangles either way\n",
               a.occupied, a.blocks, 100.0 * double(a.occupied) / double(a.blocks), a.triangles);
   CHECK(gl.errors() == 0);
