@@ -28,6 +28,7 @@ struct BenchOptions {
   bool erosion = false;
   bool ablation = false;
   bool render = false;
+  bool paper = false;
   std::string size = "960x540";
   std::vector<std::string> sets;
 };
@@ -170,8 +171,88 @@ int benchRender(const BenchOptions& o, const Scene& scene) {
   return kExitOk;
 }
 
+// The paper's Table 1 (seconds per step on a 2.4 GHz 4-core Q6600) beside ours for the same
+// scenes at the paper's particle counts.
+int benchPaper(const BenchOptions& o) {
+  struct Row {
+    const char* scene;
+    double particles, sph, erosion, boundary;
+  };
+  const Row paper[] = {{"canyon", 136000, 0.33, 0.39, 0.66},
+                       {"lake", 90000, 0.31, 0.17, 0.42},
+                       {"waterfall", 650000, 1.25, 1.05, 2.20}};
+  const int threads = omp_get_max_threads();
+  json rows = json::array();
+  for (const Row& r : paper) {
+    Scene scene = loadScene(r.scene, o.scale, 0, o.sets);
+    World w(scene.desc);
+    std::vector<double> g[3], total;
+    size_t particles = 0;
+    try {
+      for (long s = 0; s < o.warmup; ++s) w.step();
+      for (long s = 0; s < o.steps; ++s) {
+        const auto before = w.passSeconds();
+        const auto t0 = std::chrono::steady_clock::now();
+        w.step();
+        total.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+        double sum[3] = {0, 0, 0};
+        for (size_t p = 0; p < size_t(Pass::kCount); ++p) {
+          const int k = int(table1Group(Pass(p)));
+          if (k < 3) sum[k] += w.passSeconds()[p] - before[p];
+        }
+        for (int k = 0; k < 3; ++k) g[k].push_back(sum[k]);
+        particles += w.fluid().size();
+      }
+    } catch (const InvariantViolation& e) {
+      std::cerr << "error: " << r.scene << ": invariant violated at " << e.what() << "\n";
+      return kExitInvariant;
+    }
+    const double n = double(particles) / double(o.steps);
+    const double ours[3] = {median(g[int(Table1Group::kSph)]), median(g[int(Table1Group::kErosion)]),
+                            median(g[int(Table1Group::kBoundary)])};
+    const double paperTotal = r.sph + r.erosion + r.boundary, oursTotal = ours[0] + ours[1] + ours[2];
+    rows.push_back({{"scene", r.scene},
+                    {"paper", {{"particles", r.particles}, {"sph_s", r.sph}, {"erosion_s", r.erosion},
+                               {"boundary_s", r.boundary}, {"cores", 4},
+                               {"particle_steps_per_second_per_core", r.particles / paperTotal / 4}}},
+                    {"ours", {{"particles", long(n + 0.5)}, {"sph_s", ours[0]}, {"erosion_s", ours[1]},
+                              {"boundary_s", ours[2]}, {"step_s", median(total)}, {"cores", threads},
+                              {"particle_steps_per_second_per_core", n / oursTotal / threads}}}});
+  }
+  if (o.json) {
+    std::cout << json{{"threads", threads}, {"steps", o.steps}, {"rows", rows}}.dump(2) << "\n";
+    return kExitOk;
+  }
+  std::printf("Table 1 side by side: median seconds per step over %ld steps (after %ld warm-up)\n", o.steps, o.warmup);
+  std::printf("paper: Intel Q6600, 4 cores at 2.4 GHz (2009); ours: %d threads on this machine\n\n", threads);
+  std::printf("%-10s %9s %9s | %7s %7s | %7s %7s | %7s %7s | %7s %7s | %10s %10s\n", "scene", "particles",
+              "(paper)", "SPH", "paper", "erosion", "paper", "bound.", "paper", "total", "paper", "p-s/s/core", "paper");
+  for (const auto& r : rows) {
+    const auto& a = r["ours"];
+    const auto& b = r["paper"];
+    const double ta = double(a["sph_s"]) + double(a["erosion_s"]) + double(a["boundary_s"]);
+    const double tb = double(b["sph_s"]) + double(b["erosion_s"]) + double(b["boundary_s"]);
+    std::printf("%-10s %9ld %9.0f | %7.3f %7.2f | %7.3f %7.2f | %7.3f %7.2f | %7.3f %7.2f | %10.0f %10.0f\n",
+                std::string(r["scene"]).c_str(), long(a["particles"]), double(b["particles"]),
+                double(a["sph_s"]), double(b["sph_s"]), double(a["erosion_s"]), double(b["erosion_s"]),
+                double(a["boundary_s"]), double(b["boundary_s"]), ta, tb,
+                double(a["particle_steps_per_second_per_core"]), double(b["particle_steps_per_second_per_core"]));
+  }
+  std::printf("\nratio paper / ours (total seconds per step; per core):\n");
+  for (const auto& r : rows) {
+    const auto& a = r["ours"];
+    const auto& b = r["paper"];
+    const double ta = double(a["sph_s"]) + double(a["erosion_s"]) + double(a["boundary_s"]);
+    const double tb = double(b["sph_s"]) + double(b["erosion_s"]) + double(b["boundary_s"]);
+    std::printf("  %-10s %.1fx faster per step, %.1fx per core\n", std::string(r["scene"]).c_str(), tb / ta,
+                double(a["particle_steps_per_second_per_core"]) / double(b["particle_steps_per_second_per_core"]));
+  }
+  return kExitOk;
+}
+
 int bench(const BenchOptions& o) {
   setThreads(o.threads);
+  if (o.paper) return benchPaper(o);
   Scene scene = loadScene(o.scene, o.scale, o.particles, o.sets);
   if (o.ablation) return ablation(o, scene);
   if (o.render) return benchRender(o, scene);
@@ -273,6 +354,8 @@ Command addBenchCommand(CLI::App& app) {
   c->add_flag("--render", o->render,
               "Time the renderer instead: splat, occupancy, march, shading, with and without the occupancy grid");
   c->add_option("--size", o->size, "Picture size for --render (default 960x540)");
+  c->add_flag("--paper", o->paper,
+              "The paper's Table 1 beside ours: canyon, lake and waterfall at the paper's counts");
   c->add_flag("--ablation", o->ablation,
               "Compare all effects, erosion off and SPH only, stepped in turn");
   return [o] { return bench(*o); };

@@ -116,3 +116,14 @@ for name in default dambreak hydrostatic settling diffusion canyon lake waterfal
   "$scour" presets | grep -qP "^$name\t.+" || { echo "preset $name not listed"; exit 1; }
 done
 echo "presets listed"
+# bench --paper: the three scenes at the paper's counts, beside the paper's Table 1.
+"$scour" bench --paper --steps 1 --warmup 0 --json | python3 -c "
+import json, math, sys
+d = json.load(sys.stdin)
+assert [r['scene'] for r in d['rows']] == ['canyon', 'lake', 'waterfall'], d
+for r in d['rows']:
+    o = r['ours']
+    assert 0.85 * r['paper']['particles'] < o['particles'] < 1.15 * r['paper']['particles'], r
+    assert all(math.isfinite(o[k]) and o[k] >= 0 for k in ('sph_s', 'erosion_s', 'boundary_s')), r
+print('bench --paper: ' + ', '.join('%s %d particles %.3f s/step' % (r['scene'], r['ours']['particles'], r['ours']['step_s']) for r in d['rows']))
+"
