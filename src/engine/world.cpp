@@ -65,6 +65,14 @@ void require(bool ok, const std::string& what) {
   if (!ok) throw std::invalid_argument(what);
 }
 
+void validateSource(const Source& src, const std::string& at) {
+  require(src.radius > 0 && std::isfinite(src.radius), at + ".radius must be positive");
+  require(src.rate > 0 && std::isfinite(src.rate), at + ".rate must be positive");
+  require(src.direction.norm() > 0 && src.direction.allFinite(), at + ".direction must be a non-zero vector");
+  require(src.center.allFinite(), at + ".position must be finite");
+  require(src.start >= 0 && !(src.stop < src.start), at + ".stop must not come before its start");
+}
+
 }  // namespace
 
 World::World(WorldDesc d)
@@ -87,14 +95,8 @@ World::World(WorldDesc d)
   terrainReference_ = hf_.minHeight();
   acc_.resize(hf_.triangleCount());
   for (size_t s = 0; s < d.sources.size(); ++s) {
-    const Source& src = d.sources[s];
-    std::string at = "sources[" + std::to_string(s) + "]";
-    require(src.radius > 0 && std::isfinite(src.radius), at + ".radius must be positive");
-    require(src.rate > 0 && std::isfinite(src.rate), at + ".rate must be positive");
-    require(src.direction.norm() > 0 && src.direction.allFinite(),
-            at + ".direction must be a non-zero vector");
-    require(src.center.allFinite(), at + ".position must be finite");
-    emitters_.emplace_back(src, p_.spacing);
+    validateSource(d.sources[s], "sources[" + std::to_string(s) + "]");
+    emitters_.emplace_back(d.sources[s], p_.spacing);
   }
   for (size_t r = 0; r < d.rain.size(); ++r) {
     const Rain& rn = d.rain[r];
@@ -218,12 +220,12 @@ void World::removeParticles() {
   });
 }
 
-void World::emitAt(const Vec3f& pos, const Vec3f& vel, long& blocked, long& emitted) {
+void World::emitAt(const Vec3f& pos, const Vec3f& vel, long& blocked, long& emitted, double clearance) {
   // The grid indexes the particles that existed at the last search; they have moved by far less
-  // than a cell since, so its 27 cells still hold every particle within Δs/2 of pos. Particles
+  // than a cell since, so its 27 cells still hold every particle within a clearance (≤ Δs) of pos. Particles
   // placed in this step (index ≥ the grid's count) are not in it: sources space their own slots
   // Δs apart, and rain checks its drops of this step by brute force (there are few).
-  const float r2 = float(0.25 * p_.spacing * p_.spacing);
+  const float r2 = float(clearance * clearance * p_.spacing * p_.spacing);
   const size_t indexed = grid_.particleCount();
   bool occupied = false;
   grid_.forEachCandidate(pos, grid_.start(), grid_.sorted(), [&](uint32_t j) {
@@ -294,6 +296,77 @@ void World::sedimentWork() {
   }
 }
 
+void World::setParams(const SimParams& q) {
+  std::string bad = validateParams(q);
+  require(bad.empty(), bad);
+  require(q.spacing == p_.spacing && q.support_over_spacing == p_.support_over_spacing &&
+              q.rest_density == p_.rest_density,
+          "fluid.spacing, fluid.support_over_spacing and fluid.rest_density shape the particles: "
+          "they change with a reset");
+  p_ = resolve(q);
+  k_ = SphConstants(p_);
+  if (!fx_.surface_tension) k_.kappa = 0;
+  sk_ = SedimentConstants(p_);
+}
+
+std::vector<Source> World::sources() const {
+  std::vector<Source> out;
+  for (const Emitter& e : emitters_) out.push_back(e.src);
+  return out;
+}
+
+size_t World::addSource(const Source& s) {
+  validateSource(s, "source");
+  emitters_.emplace_back(s, p_.spacing);
+  return emitters_.size() - 1;
+}
+
+void World::updateSource(size_t i, const Source& s) {
+  require(i < emitters_.size(), "source " + std::to_string(i) + " does not exist");
+  validateSource(s, "source");
+  const long emitted = emitters_[i].emitted, blocked = emitters_[i].blocked;
+  emitters_[i] = Emitter(s, p_.spacing);
+  emitters_[i].emitted = emitted, emitters_[i].blocked = blocked;
+}
+
+void World::removeSource(size_t i) {
+  require(i < emitters_.size(), "source " + std::to_string(i) + " does not exist");
+  emitters_.erase(emitters_.begin() + long(i));
+}
+
+size_t World::addSink(const Sink& s) {
+  require(s.lo.allFinite() && s.hi.allFinite() && (s.hi - s.lo).minCoeff() > 0,
+          "sink: max must exceed min on every axis");
+  sinks_.push_back(s);
+  return sinks_.size() - 1;
+}
+
+void World::removeSink(size_t i) {
+  require(i < sinks_.size(), "sink " + std::to_string(i) + " does not exist");
+  sinks_.erase(sinks_.begin() + long(i));
+}
+
+long World::addWater(const Eigen::Vector3d& centre, double radius) {
+  require(centre.allFinite() && std::isfinite(radius) && radius > 0, "water brush: needs a finite centre and radius > 0");
+  const double ds = p_.spacing;
+  const int n = int(std::ceil(radius / ds));
+  // On the lattice of spacing Δs through the centre, so repeated strokes fill rather than pile up.
+  const Eigen::Vector3d base = (centre / ds).array().round() * ds;
+  long blocked = 0, added = 0;
+  for (int k = -n; k <= n; ++k)
+    for (int j = -n; j <= n; ++j)
+      for (int i = -n; i <= n; ++i) {
+        const Eigen::Vector3d x = base + ds * Eigen::Vector3d(i, j, k);
+        if ((x - centre).norm() > radius) continue;
+        if (x.x() < hf_.x0() || x.x() > hf_.xMax() || x.z() < hf_.z0() || x.z() > hf_.zMax()) continue;
+        if (x.y() < hf_.heightAt(x.x(), x.z()) + 0.5 * ds) continue;
+        emitAt(x.cast<float>(), Vec3f::Zero(), blocked, added, 0.95);  // water at rest: a full Δs apart
+      }
+  emittedTotal_ -= added;  // the brush is not a source: counted apart
+  paintedTotal_ += added;
+  return added;
+}
+
 SoilBudget World::soilBudget() const {
   SoilBudget s;
   s.terrain = terrainVolume(hf_, vertexArea_, terrainReference_);
@@ -320,11 +393,23 @@ StepStats World::step() {
   const float half = float(0.5 * dt_), full = float(dt_);
   const size_t n0 = f_.size();
   if (fx_.fluid_motion) {
+    // Closed walls: the wall force (model.md) holds the water; a particle that a violent impact
+    // still carries through is put back on the wall with its outward velocity removed.
+    const bool walls = dom_.walls;
+    const float xlo = float(hf_.x0()), xhi = float(hf_.xMax()), zlo = float(hf_.z0()), zhi = float(hf_.zMax());
     timed(Pass::kIntegrate, [&] {
 #pragma omp parallel for schedule(static)
       for (size_t i = 0; i < n0; ++i) {
         f_.v[i] += half * f_.a[i];  // kick: v(t + Δt/2)
         f_.x[i] += full * f_.v[i];  // drift: x(t + Δt)
+        if (walls) {
+          Vec3f& x = f_.x[i];
+          Vec3f& v = f_.v[i];
+          if (x.x() < xlo) x.x() = xlo, v.x() = std::max(v.x(), 0.0f);
+          if (x.x() > xhi) x.x() = xhi, v.x() = std::min(v.x(), 0.0f);
+          if (x.z() < zlo) x.z() = zlo, v.z() = std::max(v.z(), 0.0f);
+          if (x.z() > zhi) x.z() = zhi, v.z() = std::min(v.z(), 0.0f);
+        }
       }
     });
   }
@@ -532,6 +617,7 @@ void World::saveState(std::ostream& o) const {
   for (const RainState& r : rain_) put(o, r.pending), put(o, r.drawn), put(o, r.emitted), put(o, r.blocked);
   put(o, time_), put(o, dt_), put(o, step_), put(o, nextId_);
   put(o, removedSinks_), put(o, removedOutflow_), put(o, emittedTotal_), put(o, removedSediment_);
+  put(o, paintedTotal_);
   put(o, inv_);
 }
 
@@ -581,6 +667,7 @@ void World::loadState(std::istream& in) {
   get(in, time_, "clock"), get(in, dt_, "clock"), get(in, step_, "clock"), get(in, nextId_, "clock");
   get(in, removedSinks_, "counters"), get(in, removedOutflow_, "counters");
   get(in, emittedTotal_, "counters"), get(in, removedSediment_, "counters");
+  get(in, paintedTotal_, "counters");
   get(in, inv_, "invariants");
   f.scratch.clear();
   f_ = std::move(f);

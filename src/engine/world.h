@@ -120,6 +120,25 @@ class World {
 
   StepStats step();
 
+  // Live edits (the app's commands, applied between steps).
+  /// New parameters from the next step on. Throws std::invalid_argument naming the field for an
+  /// invalid set, or for a change of fluid.spacing, fluid.support_over_spacing or
+  /// fluid.rest_density (they shape the particles: those need a reset).
+  void setParams(const SimParams& p);
+  /// The sources as they are now.
+  std::vector<Source> sources() const;
+  /// Adds a source (validated as in the constructor); returns its index.
+  size_t addSource(const Source& s);
+  /// Changes a source's place, direction, radius, rate or times; its progress restarts.
+  void updateSource(size_t i, const Source& s);
+  void removeSource(size_t i);
+  const std::vector<Sink>& sinks() const { return sinks_; }
+  size_t addSink(const Sink& s);
+  void removeSink(size_t i);
+  /// Fills the free lattice points of spacing Δs within `radius` of `centre` that lie at least
+  /// Δs/2 above the terrain with water at rest (the brush). Returns how many particles it added.
+  long addWater(const Eigen::Vector3d& centre, double radius);
+
   const SimParams& params() const { return p_; }
   const Heightfield& terrain() const { return hf_; }
   const Fluid& fluid() const { return f_; }
@@ -137,6 +156,7 @@ class World {
   long removedBySinks() const { return removedSinks_; }
   long removedByOutflow() const { return removedOutflow_; }
   long emitted() const { return emittedTotal_; }
+  long painted() const { return paintedTotal_; }
   long blockedSlots() const;
 
   /// A budget further than this from its initial value stops the run (relative).
@@ -169,7 +189,8 @@ class World {
   void removeParticles();
   void emit();
   void rain();
-  void emitAt(const Vec3f& pos, const Vec3f& vel, long& blocked, long& emitted);
+  /// Places a particle unless one lies closer than clearance·Δs (then counts it as blocked).
+  void emitAt(const Vec3f& pos, const Vec3f& vel, long& blocked, long& emitted, double clearance = 0.5);
   void checkInvariants();
   void sedimentWork();
   bool needsBoundary() const { return fx_.no_slip || fx_.erosion || fx_.deposition; }
@@ -198,7 +219,7 @@ class World {
   double time_ = 0, dt_ = 0;
   long step_ = 0;
   uint32_t nextId_ = 0;
-  long removedSinks_ = 0, removedOutflow_ = 0, emittedTotal_ = 0;
+  long removedSinks_ = 0, removedOutflow_ = 0, emittedTotal_ = 0, paintedTotal_ = 0;
   InvariantReport inv_;
   std::array<double, size_t(Pass::kCount)> passSeconds_{};
   std::array<long, size_t(Pass::kCount)> passCalls_{};

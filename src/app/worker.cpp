@@ -1,0 +1,188 @@
+#include "app/worker.h"
+
+#include <chrono>
+#include <optional>
+
+namespace scour {
+
+SimulationWorker::SimulationWorker(SceneSpec spec, bool paused) : spec_(std::move(spec)), paused_(paused) {
+  rebuild();
+  publish(0);
+  thread_ = std::thread([this] { run(); });
+}
+
+SimulationWorker::~SimulationWorker() {
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    stop_ = true;
+  }
+  wake_.notify_all();
+  thread_.join();
+}
+
+void SimulationWorker::post(Command c) {
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    queue_.push_back(std::move(c));
+  }
+  wake_.notify_all();
+}
+
+SceneSpec SimulationWorker::spec() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return spec_;
+}
+
+void SimulationWorker::rebuild() {
+  SceneSpec spec;
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    spec = spec_;
+  }
+  world_ = std::make_unique<World>(buildScene(spec).desc);
+  ++generation_;
+}
+
+void SimulationWorker::run() {
+  using Clock = std::chrono::steady_clock;
+  for (;;) {
+    std::deque<Command> commands;
+    {
+      std::unique_lock<std::mutex> lock(mutex_);
+      if (!stop_ && queue_.empty() && paused_ && stepsToDo_ == 0)
+        wake_.wait(lock, [&] { return stop_ || !queue_.empty(); });
+      if (stop_) return;
+      commands.swap(queue_);
+    }
+    applyAll(commands);
+    if (!paused_ || stepsToDo_ > 0) {
+      const auto t0 = Clock::now();
+      int done = 0;
+      try {
+        for (; done < stepsPerFrame_; ++done) world_->step();
+      } catch (const InvariantViolation& e) {
+        error_ = std::string("invariant violated at ") + e.what() + " (paused; reset to go on)";
+        paused_ = true;
+      }
+      if (stepsToDo_ > 0) --stepsToDo_;
+      const double seconds = std::chrono::duration<double>(Clock::now() - t0).count();
+      publish(seconds > 0 ? done / seconds : 0);
+    } else if (!commands.empty()) {
+      publish(0);
+    }
+  }
+}
+
+void SimulationWorker::applyAll(std::deque<Command>& commands) {
+  // Parameter edits come in bursts (a slider dragged): a run of them is applied to the engine
+  // once, so the constants are rebuilt once per step rather than once per edit.
+  std::optional<SimParams> pending;
+  std::vector<std::pair<std::string, std::string>> edits;
+  auto flush = [&] {
+    if (!pending) return;
+    try {
+      world_->setParams(*pending);
+      std::lock_guard<std::mutex> lock(mutex_);
+      for (const auto& [k, v] : edits) setParam(spec_.params, k, v);
+    } catch (const std::exception& e) {
+      error_ = e.what();
+    }
+    pending.reset();
+    edits.clear();
+  };
+  for (Command& c : commands) {
+    if (auto* s = std::get_if<cmd::SetParam>(&c)) {
+      SimParams p = pending ? *pending : world_->params();
+      const std::string err = setParam(p, s->key, s->value);
+      if (!err.empty()) {
+        error_ = err;
+        continue;
+      }
+      pending = p;
+      edits.emplace_back(s->key, s->value);
+      continue;
+    }
+    flush();
+    apply(c);
+  }
+  flush();
+}
+
+void SimulationWorker::apply(Command& c) {
+  // Edits go to the World and to the spec (so a reset or a saved scene keeps them). A command
+  // that fails leaves both as they were and says why in the next snapshot.
+  try {
+    if (auto* s = std::get_if<cmd::SetParam>(&c)) {
+      SimParams p = world_->params();
+      std::string err = setParam(p, s->key, s->value);
+      if (!err.empty()) throw std::invalid_argument(err);
+      world_->setParams(p);
+      std::lock_guard<std::mutex> lock(mutex_);
+      setParam(spec_.params, s->key, s->value);
+    } else if (auto* a = std::get_if<cmd::AddSource>(&c)) {
+      world_->addSource(a->source);
+      std::lock_guard<std::mutex> lock(mutex_);
+      spec_.sources.push_back(a->source);
+    } else if (auto* u = std::get_if<cmd::UpdateSource>(&c)) {
+      world_->updateSource(u->index, u->source);
+      std::lock_guard<std::mutex> lock(mutex_);
+      spec_.sources.at(u->index) = u->source;
+    } else if (auto* r = std::get_if<cmd::RemoveSource>(&c)) {
+      world_->removeSource(r->index);
+      std::lock_guard<std::mutex> lock(mutex_);
+      spec_.sources.erase(spec_.sources.begin() + long(r->index));
+    } else if (auto* k = std::get_if<cmd::AddSink>(&c)) {
+      world_->addSink(k->sink);
+      std::lock_guard<std::mutex> lock(mutex_);
+      spec_.sinks.push_back(k->sink);
+    } else if (auto* k2 = std::get_if<cmd::RemoveSink>(&c)) {
+      world_->removeSink(k2->index);
+      std::lock_guard<std::mutex> lock(mutex_);
+      spec_.sinks.erase(spec_.sinks.begin() + long(k2->index));
+    } else if (auto* w = std::get_if<cmd::PaintWater>(&c)) {
+      world_->addWater(w->centre, w->radius);
+    } else if (std::holds_alternative<cmd::Pause>(c)) {
+      paused_ = true;
+    } else if (std::holds_alternative<cmd::Resume>(c)) {
+      paused_ = false;
+      error_.clear();
+    } else if (std::holds_alternative<cmd::StepOnce>(c)) {
+      paused_ = true;
+      ++stepsToDo_;
+    } else if (std::holds_alternative<cmd::Reset>(c)) {
+      rebuild();
+      error_.clear();
+    } else if (auto* l = std::get_if<cmd::Load>(&c)) {
+      auto next = std::make_unique<World>(buildScene(l->spec).desc);  // a bad scene throws here
+      {
+        std::lock_guard<std::mutex> lock(mutex_);
+        spec_ = l->spec;
+      }
+      world_ = std::move(next);
+      ++generation_;
+      error_.clear();
+    } else if (auto* f = std::get_if<cmd::SetStepsPerFrame>(&c)) {
+      if (f->steps < 1 || f->steps > 1000) throw std::invalid_argument("steps per frame must lie in [1, 1000]");
+      stepsPerFrame_ = f->steps;
+    }
+  } catch (const std::exception& e) {
+    error_ = e.what();
+  }
+}
+
+void SimulationWorker::publish(double stepsPerSecond) {
+  Snapshot& s = frames_.back();
+  s.frame = makeFrame(*world_);
+  s.params = world_->params();
+  s.sources = world_->sources();
+  s.sinks = world_->sinks();
+  s.soil = world_->soilBudget();
+  s.passSeconds = world_->passSeconds();
+  s.stepsPerSecond = stepsPerSecond;
+  s.paused = paused_;
+  s.generation = generation_;
+  s.error = error_;
+  frames_.publish();
+}
+
+}  // namespace scour

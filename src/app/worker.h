@@ -1,0 +1,94 @@
+#pragma once
+// The simulation on its own thread. It steps a World (OpenMP inside each step) and after every
+// step publishes a Frame with the run's figures through a triple buffer: the renderer draws the
+// newest complete one, never waits for a step and never sees a half-written one. Nothing else
+// touches the World: the UI posts commands to a queue that the worker drains between steps.
+#include <condition_variable>
+#include <deque>
+#include <memory>
+#include <mutex>
+#include <string>
+#include <thread>
+#include <variant>
+#include <vector>
+
+#include "app/triple_buffer.h"
+#include "engine/frame.h"
+#include "engine/world.h"
+#include "scene/presets.h"
+
+namespace scour {
+
+namespace cmd {
+struct SetParam { std::string key, value; };
+struct AddSource { Source source; };
+struct UpdateSource { size_t index; Source source; };
+struct RemoveSource { size_t index; };
+struct AddSink { Sink sink; };
+struct RemoveSink { size_t index; };
+struct PaintWater { Eigen::Vector3d centre; double radius; };
+struct Pause {};
+struct Resume {};
+struct StepOnce {};
+struct Reset {};                      ///< back to the scene's start (with its current edits)
+struct Load { SceneSpec spec; };      ///< a new scene
+struct SetStepsPerFrame { int steps; };  ///< steps between published frames
+}  // namespace cmd
+
+using Command = std::variant<cmd::SetParam, cmd::AddSource, cmd::UpdateSource, cmd::RemoveSource,
+                             cmd::AddSink, cmd::RemoveSink, cmd::PaintWater, cmd::Pause, cmd::Resume,
+                             cmd::StepOnce, cmd::Reset, cmd::Load, cmd::SetStepsPerFrame>;
+
+/// What the worker publishes: the frame and the run's figures at that step.
+struct Snapshot {
+  Frame frame;
+  SimParams params;
+  std::vector<Source> sources;
+  std::vector<Sink> sinks;
+  SoilBudget soil;
+  std::array<double, size_t(Pass::kCount)> passSeconds{};  ///< cumulative, since the last reset
+  double stepsPerSecond = 0;
+  bool paused = false;
+  long generation = 0;        ///< counts resets and loads
+  std::string error;          ///< the last command or step that failed (shown in the log)
+};
+
+class SimulationWorker {
+ public:
+  /// Starts the thread on the scene (paused if `paused`).
+  explicit SimulationWorker(SceneSpec spec, bool paused = false);
+  ~SimulationWorker();  ///< stops and joins
+  SimulationWorker(const SimulationWorker&) = delete;
+  SimulationWorker& operator=(const SimulationWorker&) = delete;
+
+  void post(Command c);
+  /// The newest snapshot if a new one was published since the last call; then latest() holds it.
+  bool poll() { return frames_.take(); }
+  const Snapshot& latest() const { return frames_.front(); }
+  /// The scene as edited so far (sources, sinks, parameters): what "save scene" writes.
+  SceneSpec spec() const;
+
+ private:
+  void run();
+  void applyAll(std::deque<Command>& commands);
+  void apply(Command& c);
+  void publish(double stepsPerSecond);
+  void rebuild();
+
+  mutable std::mutex mutex_;  // guards queue_, stop_ and spec_
+  std::condition_variable wake_;
+  std::deque<Command> queue_;
+  bool stop_ = false;
+  SceneSpec spec_;
+  // The worker's own (touched only by its thread).
+  std::unique_ptr<World> world_;
+  bool paused_ = false;
+  int stepsPerFrame_ = 1;
+  long stepsToDo_ = 0;
+  long generation_ = 0;
+  std::string error_;
+  TripleBuffer<Snapshot> frames_;
+  std::thread thread_;
+};
+
+}  // namespace scour
