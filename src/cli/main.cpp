@@ -1,13 +1,27 @@
-// scour: the one binary. Subcommands: run, bench, render, presets (later: the window, study, stress).
+// scour: the one binary. No subcommand: the window; subcommands: run, bench, render, presets.
 #include <cstdio>
 #include <iostream>
 
+#include "app/app.h"
 #include "cli/commands.h"
 
 int main(int argc, char** argv) {
   using namespace scour;
   CLI::App app{"Scour: hydraulic erosion with SPH (Krištof et al. 2009)", "scour"};
-  app.require_subcommand(1);
+  app.require_subcommand(0, 1);
+  // No subcommand: the window, on a scene (default: the `default` preset).
+  std::string windowScene = "default";
+  AppOptions window;
+  double windowScale = 1.0;
+  std::string windowSize = "1280x720";
+  app.add_option("scene", windowScene, "Open the window on this built-in scene or scene file (default: default)");
+  app.add_option("--scale", windowScale, "Scale the preset's particle count (window)")->check(kPositive);
+  app.add_option("--size", windowSize, "Window size WxH (default 1280x720)");
+  app.add_option("--quit-after-frames", window.quitAfterFrames, "Close the window after N frames")->check(kPositive);
+  app.add_option("--screenshot", window.screenshot, "On closing, save the last frame's picture (.png)");
+  app.add_flag("--paused", window.paused, "Start paused");
+  std::string windowTerrain = "erosion";
+  app.add_option("--terrain", windowTerrain, "Terrain colours at the start: erosion (default), shaded, sediment");
   Command run = addRunCommand(app);
   Command bench = addBenchCommand(app);
   Command render = addRenderCommand(app);
@@ -30,6 +44,20 @@ int main(int argc, char** argv) {
     if (app.got_subcommand("run")) return run();
     if (app.got_subcommand("bench")) return bench();
     if (app.got_subcommand("render")) return render();
+    // The window.
+    char x = 0, extra = 0;
+    if (std::sscanf(windowSize.c_str(), "%d%c%d%c", &window.width, &x, &window.height, &extra) != 3 || x != 'x' ||
+        window.width < 64 || window.height < 64 || window.width > 8192 || window.height > 8192)
+      throw InputError("--size: expected WxH with each side in [64, 8192], found '" + windowSize + "'");
+    if (!window.screenshot.empty() && (window.screenshot.size() < 5 ||
+                                      window.screenshot.substr(window.screenshot.size() - 4) != ".png"))
+      throw InputError("--screenshot: expected a .png file name, found '" + window.screenshot + "'");
+    if (windowTerrain == "shaded") window.terrain = 0;
+    else if (windowTerrain == "erosion") window.terrain = 1;
+    else if (windowTerrain == "sediment") window.terrain = 2;
+    else throw InputError("--terrain: expected erosion, shaded or sediment, found '" + windowTerrain + "'");
+    const Scene scene = loadScene(windowScene, windowScale, 0, {});
+    return runApp(scene.spec, window);
   } catch (const InputError& e) {
     std::cerr << "error: " << e.what() << "\n";
     return kExitInput;

@@ -90,10 +90,12 @@ TEST_CASE("commands take effect between steps", "[app][worker]") {
 TEST_CASE("parameter edits arriving during steps are safe", "[app][worker][tsan]") {
   SimulationWorker w(small());
   // This thread edits while the worker steps and reads every frame it gets.
-  const auto end = std::chrono::steady_clock::now() + std::chrono::seconds(3);
+  // At least 3 s and 4 frames (the machine may be busy), at most 60 s.
+  const auto start = std::chrono::steady_clock::now();
+  auto elapsed = [&] { return std::chrono::steady_clock::now() - start; };
   int k = 0;
   long frames = 0;
-  while (std::chrono::steady_clock::now() < end) {
+  while ((elapsed() < std::chrono::seconds(3) || frames < 4) && elapsed() < std::chrono::seconds(60)) {
     w.post(cmd::SetParam{"erosion.k_eps", std::to_string(0.05 + 0.01 * (k % 10))});
     w.post(cmd::SetParam{"erosion.tau_c", std::to_string(1.0 + (k % 7))});
     if (k % 50 == 0) w.post(cmd::PaintWater{{0.6, 0.6, 0.4}, 0.05});

@@ -1,0 +1,323 @@
+#include "app/app.h"
+
+#include <backends/imgui_impl_glfw.h>
+#include <backends/imgui_impl_opengl3.h>
+#include <imgui.h>
+
+#include "render/gl.h"  // before GLFW
+#include <GLFW/glfw3.h>
+
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <cmath>
+#include <deque>
+#include <iostream>
+#include <map>
+
+#include "app/worker.h"
+#include "render/context.h"
+#include "render/renderer.h"
+
+namespace scour {
+
+namespace {
+
+// Orbit camera: yaw and pitch around a target, at a distance.
+struct Orbit {
+  Eigen::Vector3f target = Eigen::Vector3f::Zero();
+  float yaw = -0.6f, pitch = 0.7f, distance = 3.0f;
+  Camera camera() const {
+    Camera c;
+    c.target = target;
+    c.eye = target + distance * Eigen::Vector3f(std::cos(pitch) * std::sin(yaw), std::sin(pitch),
+                                                std::cos(pitch) * std::cos(yaw));
+    return c;
+  }
+};
+
+Orbit orbitFor(const Frame& f) {
+  const Camera c = overviewCamera(f);
+  Orbit o;
+  o.target = c.target;
+  const Eigen::Vector3f d = c.eye - c.target;
+  o.distance = d.norm();
+  o.pitch = std::asin(d.y() / o.distance);
+  o.yaw = std::atan2(d.x(), d.z());
+  return o;
+}
+
+// The point of the terrain under the mouse: march along the ray through the pixel.
+bool pickTerrain(const Frame& f, const Camera& c, float aspect, double mx, double my, int w, int h,
+                 Eigen::Vector3f& hit) {
+  const Eigen::Matrix4f inv = (c.projection(aspect, 0.01f, 1000.0f) * c.view()).inverse();
+  const float x = float(2 * mx / w - 1), y = float(1 - 2 * my / h);
+  Eigen::Vector4f a = inv * Eigen::Vector4f(x, y, -1, 1), b = inv * Eigen::Vector4f(x, y, 1, 1);
+  const Eigen::Vector3f p0 = a.head<3>() / a.w(), p1 = b.head<3>() / b.w();
+  const Eigen::Vector3f dir = (p1 - p0).normalized();
+  auto height = [&](float px, float pz, float& hgt) {
+    const double u = (px - f.x0) / f.dx, v = (pz - f.z0) / f.dz;
+    if (u < 0 || v < 0 || u > f.nx - 1 || v > f.nz - 1) return false;
+    const int i = std::min(int(u), f.nx - 2), k = std::min(int(v), f.nz - 2);
+    const float fu = float(u - i), fv = float(v - k);
+    auto at = [&](int di, int dk) { return f.height[size_t(k + dk) * size_t(f.nx) + size_t(i + di)]; };
+    hgt = (1 - fv) * ((1 - fu) * at(0, 0) + fu * at(1, 0)) + fv * ((1 - fu) * at(0, 1) + fu * at(1, 1));
+    return true;
+  };
+  const float step = float(std::min(f.dx, f.dz)) * 0.5f;
+  Eigen::Vector3f p = p0;
+  for (int s = 0; s < 200000; ++s, p += step * dir) {
+    float hgt = 0;
+    if (height(p.x(), p.z(), hgt) && p.y() <= hgt) {
+      hit = {p.x(), hgt, p.z()};
+      return true;
+    }
+    if ((p - p0).norm() > 1000) break;
+  }
+  return false;
+}
+
+std::string number(double v) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.9g", v);
+  return buf;
+}
+
+}  // namespace
+
+int runApp(const SceneSpec& spec, const AppOptions& o) {
+  auto context = createGlContext(GlBackend::kWindow, o.width, o.height, true, "Scour: " + spec.name);
+  GLFWwindow* window = context->window();
+  glfwSwapInterval(0);
+  IMGUI_CHECKVERSION();
+  ImGui::CreateContext();
+  ImGuiIO& io = ImGui::GetIO();
+  io.IniFilename = nullptr;  // no imgui.ini written next to the user's files
+  ImGui_ImplGlfw_InitForOpenGL(window, true);
+  ImGui_ImplOpenGL3_Init("#version 450 core");
+
+  SimulationWorker worker(spec, o.paused);
+  Renderer renderer(o.width, o.height);
+  RenderSettings settings;
+  settings.terrain = RenderSettings::Terrain(o.terrain);
+  Orbit orbit;
+  bool haveCamera = false, placing = false;
+  long frames = 0;
+  long lastGeneration = -1;
+  std::deque<float> sph, erosion, boundary, render;
+  std::array<double, size_t(Pass::kCount)> lastPass{};
+  long lastStep = -1;
+  std::vector<std::string> log;
+  std::string lastError;
+  double lastX = 0, lastY = 0;
+  int stepsPerFrame = 1;
+
+  while (!glfwWindowShouldClose(window)) {
+    glfwPollEvents();
+    worker.poll();
+    const Snapshot& snap = worker.latest();
+    const Frame& frame = snap.frame;
+    if (!haveCamera || snap.generation != lastGeneration) {
+      if (!haveCamera) orbit = orbitFor(frame);
+      haveCamera = true;
+      lastGeneration = snap.generation;
+    }
+    if (!snap.error.empty() && snap.error != lastError) log.push_back(snap.error);
+    lastError = snap.error;
+    // Per-step pass times, grouped like the paper's Table 1.
+    if (frame.step != lastStep && frame.step > 0 && lastStep >= 0 && frame.step > lastStep) {
+      double g[3] = {0, 0, 0};
+      for (size_t p = 0; p < size_t(Pass::kCount); ++p) {
+        const int k = int(table1Group(Pass(p)));
+        if (k < 3) g[k] += (snap.passSeconds[p] - lastPass[p]) / double(frame.step - lastStep);
+      }
+      for (auto [q, v] : {std::pair{&sph, g[0]}, std::pair{&erosion, g[1]}, std::pair{&boundary, g[2]}}) {
+        q->push_back(float(v * 1e3));
+        if (q->size() > 200) q->pop_front();
+      }
+    }
+    lastPass = snap.passSeconds;
+    lastStep = frame.step;
+
+    int fbw = 0, fbh = 0;
+    glfwGetFramebufferSize(window, &fbw, &fbh);
+    fbw = std::max(fbw, 16), fbh = std::max(fbh, 16);
+    renderer.resize(fbw, fbh);
+
+    // Mouse: orbit (left drag), pan (right drag), zoom (wheel); a click places a source when
+    // the Water panel's "place" mode is on. Only when ImGui does not want the mouse.
+    double mx = 0, my = 0;
+    glfwGetCursorPos(window, &mx, &my);
+    if (!io.WantCaptureMouse) {
+      const float dx = float(mx - lastX), dy = float(my - lastY);
+      if (placing && ImGui::IsMouseClicked(ImGuiMouseButton_Left)) {
+        Eigen::Vector3f hit;
+        int ww = 0, wh = 0;
+        glfwGetWindowSize(window, &ww, &wh);
+        if (pickTerrain(frame, orbit.camera(), float(fbw) / float(fbh), mx, my, ww, wh, hit)) {
+          Source s;
+          s.center = hit.cast<double>() + Eigen::Vector3d(0, 6 * frame.spacing, 0);
+          s.radius = 3 * frame.spacing;
+          s.direction = {0, -1, 0};
+          s.rate = 50 * std::pow(double(frame.spacing), 2);  // about 1 m/s out of the disk
+          worker.post(cmd::AddSource{s});
+          log.push_back("source placed at (" + number(hit.x()) + ", " + number(hit.y()) + ", " + number(hit.z()) + ")");
+        }
+      } else if (glfwGetMouseButton(window, GLFW_MOUSE_BUTTON_LEFT) == GLFW_PRESS) {
+        orbit.yaw -= 0.005f * dx;
+        orbit.pitch = std::clamp(orbit.pitch + 0.005f * dy, -1.5f, 1.5f);
+      } else if (glfwGetMouseButton(window, GLFW_MOUSE_BUTTON_RIGHT) == GLFW_PRESS) {
+        const Camera c = orbit.camera();
+        const Eigen::Vector3f fwd = (c.target - c.eye).normalized();
+        const Eigen::Vector3f right = fwd.cross(Eigen::Vector3f::UnitY()).normalized();
+        const Eigen::Vector3f up = right.cross(fwd);
+        orbit.target += 0.0015f * orbit.distance * (-dx * right + dy * up);
+      }
+      if (io.MouseWheel != 0) orbit.distance *= std::pow(0.9f, io.MouseWheel);
+    }
+    lastX = mx, lastY = my;
+
+    const double t0 = glfwGetTime();
+    renderer.render(frame, orbit.camera(), settings);
+    glFinish();
+    render.push_back(float((glfwGetTime() - t0) * 1e3));
+    if (render.size() > 200) render.pop_front();
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    glViewport(0, 0, fbw, fbh);
+    renderer.blitTo(fbw, fbh);
+
+    ImGui_ImplOpenGL3_NewFrame();
+    ImGui_ImplGlfw_NewFrame();
+    ImGui::NewFrame();
+
+    ImGui::SetNextWindowPos({10, 10}, ImGuiCond_FirstUseEver);
+    ImGui::SetNextWindowSize({340, 0}, ImGuiCond_FirstUseEver);
+    ImGui::Begin("Run");
+    if (ImGui::Button(snap.paused ? "Play" : "Pause")) worker.post(snap.paused ? Command(cmd::Resume{}) : Command(cmd::Pause{}));
+    ImGui::SameLine();
+    if (ImGui::Button("Step")) worker.post(cmd::StepOnce{});
+    ImGui::SameLine();
+    if (ImGui::Button("Reset")) worker.post(cmd::Reset{});
+    if (ImGui::SliderInt("steps per frame", &stepsPerFrame, 1, 50)) worker.post(cmd::SetStepsPerFrame{stepsPerFrame});
+    ImGui::Text("t = %.3f s   step %ld   %zu particles", frame.time, frame.step, frame.particles());
+    ImGui::Text("%.1f steps/s", snap.stepsPerSecond);
+    ImGui::End();
+
+    ImGui::SetNextWindowPos({10, 140}, ImGuiCond_FirstUseEver);
+    ImGui::SetNextWindowSize({340, 420}, ImGuiCond_FirstUseEver);
+    ImGui::Begin("Parameters");
+    std::string group;
+    bool open = false;
+    for (const ParamInfo& p : paramTable()) {
+      const std::string key = p.key, g = key.substr(0, key.find('.'));
+      if (g != group) {
+        group = g;
+        open = ImGui::CollapsingHeader(g.c_str(), g == "erosion" ? ImGuiTreeNodeFlags_DefaultOpen : 0);
+      }
+      if (!open) continue;
+      const std::string label = std::string(p.label) + " " + p.symbol + (p.unit && *p.unit ? std::string(" [") + p.unit + "]" : "");
+      const double current = getParam(snap.params, p);
+      if (p.choices) {
+        int v = int(current);
+        int count = 0;
+        while (p.choices[count]) ++count;
+        if (ImGui::Combo(label.c_str(), &v, p.choices, count)) worker.post(cmd::SetParam{key, p.choices[v]});
+      } else {
+        double v = current;
+        const bool logScale = p.min > 0 && p.max / p.min > 100;
+        if (ImGui::SliderScalar(label.c_str(), ImGuiDataType_Double, &v, &p.min, &p.max, "%.4g",
+                                logScale ? ImGuiSliderFlags_Logarithmic : 0))
+          worker.post(cmd::SetParam{key, number(v)});
+      }
+      if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s (%s): %s  range [%g, %g]", key.c_str(), p.symbol, p.help, p.min, p.max);
+    }
+    ImGui::End();
+
+    ImGui::SetNextWindowPos({float(fbw) - 330, 10}, ImGuiCond_FirstUseEver);
+    ImGui::SetNextWindowSize({320, 0}, ImGuiCond_FirstUseEver);
+    ImGui::Begin("Display");
+    int mode = int(settings.terrain);
+    ImGui::RadioButton("shaded", &mode, 0);
+    ImGui::SameLine();
+    ImGui::RadioButton("erosion", &mode, 1);
+    ImGui::SameLine();
+    ImGui::RadioButton("sediment", &mode, 2);
+    settings.terrain = RenderSettings::Terrain(mode);
+    ImGui::Checkbox("water surface", &settings.water);
+    ImGui::Checkbox("reflections", &settings.reflections);
+    ImGui::SameLine();
+    ImGui::Checkbox("refraction", &settings.refraction);
+    ImGui::SameLine();
+    ImGui::Checkbox("caustics", &settings.caustics);
+    int particles = int(settings.particles);
+    ImGui::Text("particles:");
+    ImGui::SameLine();
+    ImGui::RadioButton("off", &particles, 0);
+    ImGui::SameLine();
+    ImGui::RadioButton("C", &particles, 1);
+    ImGui::SameLine();
+    ImGui::RadioButton("speed", &particles, 2);
+    settings.particles = RenderSettings::Particles(particles);
+    ImGui::TextDisabled("left drag: orbit, right drag: pan, wheel: zoom");
+    ImGui::End();
+
+    ImGui::SetNextWindowPos({float(fbw) - 330, 200}, ImGuiCond_FirstUseEver);
+    ImGui::SetNextWindowSize({320, 0}, ImGuiCond_FirstUseEver);
+    ImGui::Begin("Water");
+    ImGui::Checkbox("click the terrain to place a source", &placing);
+    for (size_t i = 0; i < snap.sources.size(); ++i) {
+      ImGui::PushID(int(i));
+      Source s = snap.sources[i];
+      bool changed = false;
+      ImGui::Text("source %zu at (%.2f, %.2f, %.2f)", i, s.center.x(), s.center.y(), s.center.z());
+      float rate = float(s.rate * 1e3), radius = float(s.radius);
+      changed |= ImGui::SliderFloat("rate [L/s]", &rate, 0.01f, 50.0f, "%.3g", ImGuiSliderFlags_Logarithmic);
+      changed |= ImGui::SliderFloat("radius [m]", &radius, frame.spacing, 50 * frame.spacing, "%.3g");
+      if (changed) {
+        s.rate = rate * 1e-3, s.radius = radius;
+        worker.post(cmd::UpdateSource{i, s});
+      }
+      if (ImGui::Button("delete")) worker.post(cmd::RemoveSource{i});
+      ImGui::PopID();
+    }
+    ImGui::End();
+
+    ImGui::SetNextWindowPos({float(fbw) - 330, 380}, ImGuiCond_FirstUseEver);
+    ImGui::SetNextWindowSize({320, 0}, ImGuiCond_FirstUseEver);
+    ImGui::Begin("Stats");
+    auto plot = [](const char* name, const std::deque<float>& q) {
+      std::vector<float> v(q.begin(), q.end());
+      char overlay[64];
+      std::snprintf(overlay, sizeof overlay, "%.2f ms", v.empty() ? 0.0f : v.back());
+      ImGui::PlotLines(name, v.data(), int(v.size()), 0, overlay, 0.0f, FLT_MAX, {0, 40});
+    };
+    plot("SPH", sph);
+    plot("erosion", erosion);
+    plot("boundary", boundary);
+    plot("render", render);
+    ImGui::Text("soil: terrain %.6g  suspended %.3g  removed %.3g m3", snap.soil.terrain, snap.soil.suspended, snap.soil.removed);
+    ImGui::Text("budget error %.2e (relative)", snap.soil.relativeError());
+    ImGui::End();
+
+    ImGui::SetNextWindowPos({10, float(fbh) - 130}, ImGuiCond_FirstUseEver);
+    ImGui::SetNextWindowSize({600, 120}, ImGuiCond_FirstUseEver);
+    ImGui::Begin("Log");
+    for (const std::string& line : log) ImGui::TextWrapped("%s", line.c_str());
+    ImGui::End();
+
+    ImGui::Render();
+    ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
+    context->swapBuffers();
+    ++frames;
+    if (o.quitAfterFrames > 0 && frames >= o.quitAfterFrames) break;
+  }
+  if (!o.screenshot.empty()) renderer.writePng(o.screenshot);
+  const long errors = context->errors();
+  ImGui_ImplOpenGL3_Shutdown();
+  ImGui_ImplGlfw_Shutdown();
+  ImGui::DestroyContext();
+  std::cout << "closed after " << frames << " frames; simulated " << worker.latest().frame.time << " s, "
+            << worker.latest().frame.step << " steps; GL errors: " << errors << "\n";
+  return errors == 0 ? 0 : 1;
+}
+
+}  // namespace scour

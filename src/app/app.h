@@ -1,0 +1,22 @@
+#pragma once
+// The interactive sandbox: a window that shows the newest frame of the simulation worker, with
+// Dear ImGui panels to run it, edit every parameter, place sources and choose what is drawn.
+#include <string>
+
+#include "scene/presets.h"
+
+namespace scour {
+
+struct AppOptions {
+  int width = 1280, height = 720;
+  long quitAfterFrames = 0;  ///< > 0: close after this many frames (tests)
+  std::string screenshot;    ///< write the last frame's picture here on exit
+  bool paused = false;
+  int terrain = 1;           ///< the terrain colours at the start: 0 shaded, 1 erosion, 2 sediment
+};
+
+/// Opens the window on the scene and runs until it is closed. Throws GlError if no window can
+/// be made.
+int runApp(const SceneSpec& spec, const AppOptions& o);
+
+}  // namespace scour
