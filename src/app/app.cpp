@@ -12,11 +12,15 @@
 #include <cmath>
 #include <deque>
 #include <iostream>
+#include <cstdlib>
+#include <fstream>
 #include <map>
+#include <sstream>
 
 #include "app/worker.h"
 #include "render/context.h"
 #include "render/renderer.h"
+#include "scene/scene_json.h"
 
 namespace scour {
 
@@ -84,7 +88,37 @@ std::string number(double v) {
 
 }  // namespace
 
+std::vector<ReplayEvent> readReplay(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw std::invalid_argument(path + ": cannot open the replay file");
+  std::vector<ReplayEvent> events;
+  std::string line;
+  for (int n = 1; std::getline(in, line); ++n) {
+    std::istringstream words(line);
+    std::string w;
+    ReplayEvent e{0, {}};
+    if (!(words >> w) || w[0] == '#') continue;
+    char* end = nullptr;
+    e.frame = std::strtol(w.c_str(), &end, 10);
+    const std::string at = path + ":" + std::to_string(n) + ": ";
+    if (*end != 0 || e.frame < 0) throw std::invalid_argument(at + "expected a frame number first, found '" + w + "'");
+    while (words >> w) e.words.push_back(w);
+    if (e.words.empty()) throw std::invalid_argument(at + "an action must follow the frame number");
+    const std::string& a = e.words[0];
+    const std::map<std::string, size_t> arity = {{"click", 3}, {"place", 2}, {"brush", 2}, {"set", 3},
+                                                 {"press", 2}, {"screenshot", 2}};
+    auto it = arity.find(a);
+    if (it == arity.end())
+      throw std::invalid_argument(at + "unknown action '" + a + "' (click, place, brush, set, press, screenshot)");
+    if (e.words.size() != it->second)
+      throw std::invalid_argument(at + "'" + a + "' takes " + std::to_string(it->second - 1) + " argument(s)");
+    events.push_back(e);
+  }
+  return events;
+}
+
 int runApp(const SceneSpec& spec, const AppOptions& o) {
+  const std::vector<ReplayEvent> replay = o.replay.empty() ? std::vector<ReplayEvent>{} : readReplay(o.replay);
   auto context = createGlContext(GlBackend::kWindow, o.width, o.height, true, "Scour: " + spec.name);
   GLFWwindow* window = context->window();
   glfwSwapInterval(0);
@@ -96,18 +130,23 @@ int runApp(const SceneSpec& spec, const AppOptions& o) {
   ImGui_ImplOpenGL3_Init("#version 450 core");
 
   SimulationWorker worker(spec, o.paused);
+  const double opened = glfwGetTime();
+  long firstStep = -1;
   Renderer renderer(o.width, o.height);
   RenderSettings settings;
   settings.terrain = RenderSettings::Terrain(o.terrain);
   Orbit orbit;
-  bool haveCamera = false, placing = false;
+  bool haveCamera = false, placing = false, brushing = false;
+  float brushRadius = 4 * spec.params.spacing;
+  char path[512] = "scour_out";
+  Eigen::Vector3d lastSource = Eigen::Vector3d::Constant(NAN);
   long frames = 0;
   long lastGeneration = -1;
   std::deque<float> sph, erosion, boundary, render;
   std::array<double, size_t(Pass::kCount)> lastPass{};
   long lastStep = -1;
   std::vector<std::string> log;
-  std::string lastError;
+  std::string lastError, lastNotice;
   double lastX = 0, lastY = 0;
   int stepsPerFrame = 1;
 
@@ -123,6 +162,8 @@ int runApp(const SceneSpec& spec, const AppOptions& o) {
     }
     if (!snap.error.empty() && snap.error != lastError) log.push_back(snap.error);
     lastError = snap.error;
+    if (!snap.notice.empty() && snap.notice != lastNotice) log.push_back(snap.notice);
+    lastNotice = snap.notice;
     // Per-step pass times, grouped like the paper's Table 1.
     if (frame.step != lastStep && frame.step > 0 && lastStep >= 0 && frame.step > lastStep) {
       double g[3] = {0, 0, 0};
@@ -145,23 +186,55 @@ int runApp(const SceneSpec& spec, const AppOptions& o) {
 
     // Mouse: orbit (left drag), pan (right drag), zoom (wheel); a click places a source when
     // the Water panel's "place" mode is on. Only when ImGui does not want the mouse.
+    // A click on the terrain places a source or paints water (the real mouse and the replay
+    // take this same path).
+    auto clickAt = [&](double cx, double cy) {
+      Eigen::Vector3f hit;
+      int ww = 0, wh = 0;
+      glfwGetWindowSize(window, &ww, &wh);
+      if (!pickTerrain(frame, orbit.camera(), float(fbw) / float(fbh), cx, cy, ww, wh, hit)) {
+        log.push_back("no terrain under the mouse");
+        return;
+      }
+      if (brushing) {
+        worker.post(cmd::PaintWater{hit.cast<double>() + Eigen::Vector3d(0, brushRadius, 0), brushRadius});
+        log.push_back("painted water at (" + number(hit.x()) + ", " + number(hit.y()) + ", " + number(hit.z()) + ")");
+        return;
+      }
+      Source s;
+      s.center = hit.cast<double>() + Eigen::Vector3d(0, 6 * frame.spacing, 0);
+      s.radius = 3 * frame.spacing;
+      s.direction = {0, -1, 0};
+      s.rate = 50 * std::pow(double(frame.spacing), 2);  // about 1 m/s out of the disk
+      worker.post(cmd::AddSource{s});
+      lastSource = s.center;
+      log.push_back("source placed at (" + number(s.center.x()) + ", " + number(s.center.y()) + ", " + number(s.center.z()) + ")");
+    };
+    auto setParameter = [&](const std::string& key, const std::string& value) {
+      worker.post(cmd::SetParam{key, value});
+    };
+    // Scripted events of this frame.
+    for (const ReplayEvent& e : replay) {
+      if (e.frame != frames) continue;
+      const auto& w = e.words;
+      if (w[0] == "click") clickAt(std::stod(w[1]), std::stod(w[2]));
+      else if (w[0] == "place") placing = w[1] == "on", brushing = brushing && !placing;
+      else if (w[0] == "brush") brushing = w[1] == "on", placing = placing && !brushing;
+      else if (w[0] == "set") setParameter(w[1], w[2]);
+      else if (w[0] == "press") {
+        if (w[1] == "play") worker.post(cmd::Resume{});
+        else if (w[1] == "pause") worker.post(cmd::Pause{});
+        else if (w[1] == "step") worker.post(cmd::StepOnce{});
+        else if (w[1] == "reset") worker.post(cmd::Reset{});
+      } else if (w[0] == "screenshot") renderer.writePng(w[1]);
+    }
+
     double mx = 0, my = 0;
     glfwGetCursorPos(window, &mx, &my);
     if (!io.WantCaptureMouse) {
       const float dx = float(mx - lastX), dy = float(my - lastY);
-      if (placing && ImGui::IsMouseClicked(ImGuiMouseButton_Left)) {
-        Eigen::Vector3f hit;
-        int ww = 0, wh = 0;
-        glfwGetWindowSize(window, &ww, &wh);
-        if (pickTerrain(frame, orbit.camera(), float(fbw) / float(fbh), mx, my, ww, wh, hit)) {
-          Source s;
-          s.center = hit.cast<double>() + Eigen::Vector3d(0, 6 * frame.spacing, 0);
-          s.radius = 3 * frame.spacing;
-          s.direction = {0, -1, 0};
-          s.rate = 50 * std::pow(double(frame.spacing), 2);  // about 1 m/s out of the disk
-          worker.post(cmd::AddSource{s});
-          log.push_back("source placed at (" + number(hit.x()) + ", " + number(hit.y()) + ", " + number(hit.z()) + ")");
-        }
+      if ((placing || brushing) && ImGui::IsMouseClicked(ImGuiMouseButton_Left)) {
+        clickAt(mx, my);
       } else if (glfwGetMouseButton(window, GLFW_MOUSE_BUTTON_LEFT) == GLFW_PRESS) {
         orbit.yaw -= 0.005f * dx;
         orbit.pitch = std::clamp(orbit.pitch + 0.005f * dy, -1.5f, 1.5f);
@@ -192,7 +265,7 @@ int runApp(const SceneSpec& spec, const AppOptions& o) {
     ImGui::SetNextWindowPos({10, 10}, ImGuiCond_FirstUseEver);
     ImGui::SetNextWindowSize({340, 0}, ImGuiCond_FirstUseEver);
     ImGui::Begin("Run");
-    if (ImGui::Button(snap.paused ? "Play" : "Pause")) worker.post(snap.paused ? Command(cmd::Resume{}) : Command(cmd::Pause{}));
+    if (ImGui::Button(snap.paused ? "Play" : "Pause")) worker.post(snap.paused ? SimCommand(cmd::Resume{}) : SimCommand(cmd::Pause{}));
     ImGui::SameLine();
     if (ImGui::Button("Step")) worker.post(cmd::StepOnce{});
     ImGui::SameLine();
@@ -220,13 +293,13 @@ int runApp(const SceneSpec& spec, const AppOptions& o) {
         int v = int(current);
         int count = 0;
         while (p.choices[count]) ++count;
-        if (ImGui::Combo(label.c_str(), &v, p.choices, count)) worker.post(cmd::SetParam{key, p.choices[v]});
+        if (ImGui::Combo(label.c_str(), &v, p.choices, count)) setParameter(key, p.choices[v]);
       } else {
         double v = current;
         const bool logScale = p.min > 0 && p.max / p.min > 100;
         if (ImGui::SliderScalar(label.c_str(), ImGuiDataType_Double, &v, &p.min, &p.max, "%.4g",
                                 logScale ? ImGuiSliderFlags_Logarithmic : 0))
-          worker.post(cmd::SetParam{key, number(v)});
+          setParameter(key, number(v));
       }
       if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s (%s): %s  range [%g, %g]", key.c_str(), p.symbol, p.help, p.min, p.max);
     }
@@ -263,13 +336,30 @@ int runApp(const SceneSpec& spec, const AppOptions& o) {
     ImGui::SetNextWindowPos({float(fbw) - 330, 200}, ImGuiCond_FirstUseEver);
     ImGui::SetNextWindowSize({320, 0}, ImGuiCond_FirstUseEver);
     ImGui::Begin("Water");
-    ImGui::Checkbox("click the terrain to place a source", &placing);
+    if (ImGui::Checkbox("click the terrain to place a source", &placing) && placing) brushing = false;
+    if (ImGui::Checkbox("brush: click to paint water", &brushing) && brushing) placing = false;
+    ImGui::SliderFloat("brush radius [m]", &brushRadius, frame.spacing, 30 * frame.spacing, "%.3g");
+    {
+      SceneSpec edited = worker.spec();
+      bool rain = edited.effects.rain;
+      if (!edited.rain.empty() && ImGui::Checkbox("rain (on reset)", &rain)) {
+        edited.effects.rain = rain;
+        worker.post(cmd::SetEffects{edited.effects});
+        worker.post(cmd::Reset{});
+      }
+    }
+    ImGui::Text("%ld particles from sources, %ld painted", snap.emitted, snap.painted);
     for (size_t i = 0; i < snap.sources.size(); ++i) {
       ImGui::PushID(int(i));
       Source s = snap.sources[i];
       bool changed = false;
       ImGui::Text("source %zu at (%.2f, %.2f, %.2f)", i, s.center.x(), s.center.y(), s.center.z());
       float rate = float(s.rate * 1e3), radius = float(s.radius);
+      float dir[3] = {float(s.direction.x()), float(s.direction.y()), float(s.direction.z())};
+      if (ImGui::SliderFloat3("direction", dir, -1.0f, 1.0f, "%.2f") && Eigen::Vector3f(dir[0], dir[1], dir[2]).norm() > 1e-3f) {
+        s.direction = Eigen::Vector3d(dir[0], dir[1], dir[2]);
+        changed = true;
+      }
       changed |= ImGui::SliderFloat("rate [L/s]", &rate, 0.01f, 50.0f, "%.3g", ImGuiSliderFlags_Logarithmic);
       changed |= ImGui::SliderFloat("radius [m]", &radius, frame.spacing, 50 * frame.spacing, "%.3g");
       if (changed) {
@@ -298,6 +388,42 @@ int runApp(const SceneSpec& spec, const AppOptions& o) {
     ImGui::Text("budget error %.2e (relative)", snap.soil.relativeError());
     ImGui::End();
 
+    ImGui::SetNextWindowPos({360, 10}, ImGuiCond_FirstUseEver);
+    ImGui::SetNextWindowSize({360, 0}, ImGuiCond_FirstUseEver);
+    ImGui::Begin("File");
+    ImGui::InputText("name", path, sizeof path);
+    ImGui::TextDisabled("files are <name>.json, .ckpt, _height.png, .r32, .obj, _erosion.png, _shot.png");
+    const std::string base = path;
+    using K = cmd::Save::Kind;
+    if (ImGui::Button("save scene")) worker.post(cmd::Save{K::kScene, base + ".json"});
+    ImGui::SameLine();
+    if (ImGui::Button("save checkpoint")) worker.post(cmd::Save{K::kCheckpoint, base + ".ckpt"});
+    ImGui::SameLine();
+    if (ImGui::Button("resume checkpoint")) worker.post(cmd::LoadCheckpoint{base + ".ckpt"});
+    if (ImGui::Button("open scene")) {
+      try {
+        worker.post(cmd::Load{loadSceneFile(base + ".json")});
+      } catch (const std::exception& e) {
+        log.push_back(e.what());
+      }
+    }
+    if (ImGui::Button("height PNG")) worker.post(cmd::Save{K::kHeightPng, base + "_height.png"});
+    ImGui::SameLine();
+    if (ImGui::Button("raw float")) worker.post(cmd::Save{K::kHeightRaw, base + ".r32"});
+    ImGui::SameLine();
+    if (ImGui::Button("mesh OBJ")) worker.post(cmd::Save{K::kMesh, base + ".obj"});
+    ImGui::SameLine();
+    if (ImGui::Button("erosion map")) worker.post(cmd::Save{K::kErosionMap, base + "_erosion.png"});
+    if (ImGui::Button("screenshot")) {
+      try {
+        renderer.writePng(base + "_shot.png");
+        log.push_back("wrote " + base + "_shot.png");
+      } catch (const std::exception& e) {
+        log.push_back(e.what());
+      }
+    }
+    ImGui::End();
+
     ImGui::SetNextWindowPos({10, float(fbh) - 130}, ImGuiCond_FirstUseEver);
     ImGui::SetNextWindowSize({600, 120}, ImGuiCond_FirstUseEver);
     ImGui::Begin("Log");
@@ -308,15 +434,26 @@ int runApp(const SceneSpec& spec, const AppOptions& o) {
     ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
     context->swapBuffers();
     ++frames;
+    if (firstStep < 0) firstStep = frame.step;
     if (o.quitAfterFrames > 0 && frames >= o.quitAfterFrames) break;
+    if (o.quitAfterSeconds > 0 && glfwGetTime() - opened >= o.quitAfterSeconds) break;
   }
   if (!o.screenshot.empty()) renderer.writePng(o.screenshot);
   const long errors = context->errors();
   ImGui_ImplOpenGL3_Shutdown();
   ImGui_ImplGlfw_Shutdown();
   ImGui::DestroyContext();
-  std::cout << "closed after " << frames << " frames; simulated " << worker.latest().frame.time << " s, "
-            << worker.latest().frame.step << " steps; GL errors: " << errors << "\n";
+  worker.poll();
+  const Snapshot& last = worker.latest();
+  if (o.stats) *o.stats = {frames, last.frame.step - std::max(firstStep, 0L), glfwGetTime() - opened};
+  long near = 0;
+  if (lastSource.allFinite())
+    for (const auto& x : last.frame.position) near += (x.cast<double>() - lastSource).norm() < 0.25;
+  std::cout << "closed after " << frames << " frames; simulated " << last.frame.time << " s, "
+            << last.frame.step << " steps; " << last.sources.size() << " sources; erosion.k_eps "
+            << last.params.k_eps << "; emitted " << last.emitted << "; painted " << last.painted
+            << "; particles within 0.25 m of the last placed source " << near << "; GL errors: " << errors << "\n";
+  for (const std::string& line : log) std::cout << "log: " << line << "\n";
   return errors == 0 ? 0 : 1;
 }
 

@@ -2,6 +2,7 @@
 // The interactive sandbox: a window that shows the newest frame of the simulation worker, with
 // Dear ImGui panels to run it, edit every parameter, place sources and choose what is drawn.
 #include <string>
+#include <vector>
 
 #include "scene/presets.h"
 
@@ -13,7 +14,22 @@ struct AppOptions {
   std::string screenshot;    ///< write the last frame's picture here on exit
   bool paused = false;
   int terrain = 1;           ///< the terrain colours at the start: 0 shaded, 1 erosion, 2 sediment
+  std::string replay;        ///< a file of scripted input events (see docs/app.md)
+  double quitAfterSeconds = 0;  ///< > 0: close after this long (bench --with-window)
+  struct Stats {
+    long frames = 0, steps = 0;  ///< drawn; simulated while the window was open
+    double seconds = 0;
+  };
+  Stats* stats = nullptr;    ///< filled on closing when set
 };
+
+/// One scripted event: at frame `frame`, an action with its words ("click 320 200").
+struct ReplayEvent {
+  long frame;
+  std::vector<std::string> words;
+};
+/// Reads a replay file; throws std::invalid_argument naming the file, line and problem.
+std::vector<ReplayEvent> readReplay(const std::string& path);
 
 /// Opens the window on the scene and runs until it is closed. Throws GlError if no window can
 /// be made.

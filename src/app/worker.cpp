@@ -1,5 +1,9 @@
 #include "app/worker.h"
 
+#include "scene/checkpoint.h"
+#include "scene/output.h"
+#include "scene/scene_json.h"
+
 #include <chrono>
 #include <optional>
 
@@ -20,7 +24,7 @@ SimulationWorker::~SimulationWorker() {
   thread_.join();
 }
 
-void SimulationWorker::post(Command c) {
+void SimulationWorker::post(SimCommand c) {
   {
     std::lock_guard<std::mutex> lock(mutex_);
     queue_.push_back(std::move(c));
@@ -46,7 +50,7 @@ void SimulationWorker::rebuild() {
 void SimulationWorker::run() {
   using Clock = std::chrono::steady_clock;
   for (;;) {
-    std::deque<Command> commands;
+    std::deque<SimCommand> commands;
     {
       std::unique_lock<std::mutex> lock(mutex_);
       if (!stop_ && queue_.empty() && paused_ && stepsToDo_ == 0)
@@ -73,7 +77,7 @@ void SimulationWorker::run() {
   }
 }
 
-void SimulationWorker::applyAll(std::deque<Command>& commands) {
+void SimulationWorker::applyAll(std::deque<SimCommand>& commands) {
   // Parameter edits come in bursts (a slider dragged): a run of them is applied to the engine
   // once, so the constants are rebuilt once per step rather than once per edit.
   std::optional<SimParams> pending;
@@ -90,7 +94,7 @@ void SimulationWorker::applyAll(std::deque<Command>& commands) {
     pending.reset();
     edits.clear();
   };
-  for (Command& c : commands) {
+  for (SimCommand& c : commands) {
     if (auto* s = std::get_if<cmd::SetParam>(&c)) {
       SimParams p = pending ? *pending : world_->params();
       const std::string err = setParam(p, s->key, s->value);
@@ -108,7 +112,7 @@ void SimulationWorker::applyAll(std::deque<Command>& commands) {
   flush();
 }
 
-void SimulationWorker::apply(Command& c) {
+void SimulationWorker::apply(SimCommand& c) {
   // Edits go to the World and to the spec (so a reset or a saved scene keeps them). A command
   // that fails leaves both as they were and says why in the next snapshot.
   try {
@@ -161,6 +165,36 @@ void SimulationWorker::apply(Command& c) {
       world_ = std::move(next);
       ++generation_;
       error_.clear();
+    } else if (auto* fx = std::get_if<cmd::SetEffects>(&c)) {
+      std::lock_guard<std::mutex> lock(mutex_);
+      spec_.effects = fx->effects;
+    } else if (auto* sv = std::get_if<cmd::Save>(&c)) {
+      using K = cmd::Save::Kind;
+      switch (sv->kind) {
+        case K::kScene: {
+          const SceneSpec spec = this->spec();
+          nlohmann::json j = sceneToJson(buildScene(spec));
+          j.erase("built");
+          writeAtomically(sv->path, [&](std::ostream& o) { o << j.dump(2) << "\n"; });
+          break;
+        }
+        case K::kCheckpoint: writeCheckpoint(sv->path, buildScene(this->spec()), *world_); break;
+        case K::kHeightPng: writeHeightPng16(sv->path, world_->terrain()); break;
+        case K::kHeightRaw: writeHeightRaw(sv->path, world_->terrain()); break;
+        case K::kMesh: writeTerrainObj(sv->path, world_->terrain()); break;
+        case K::kErosionMap: writeErosionPng(sv->path, world_->terrain(), world_->heightChange()); break;
+      }
+      notice_ = "wrote " + sv->path;
+    } else if (auto* lc = std::get_if<cmd::LoadCheckpoint>(&c)) {
+      Scene scene;
+      auto next = std::make_unique<World>(resumeWorld(readCheckpoint(lc->path), scene));
+      {
+        std::lock_guard<std::mutex> lock(mutex_);
+        spec_ = scene.spec;
+      }
+      world_ = std::move(next);
+      ++generation_;
+      notice_ = "resumed " + lc->path + " at step " + std::to_string(world_->steps());
     } else if (auto* f = std::get_if<cmd::SetStepsPerFrame>(&c)) {
       if (f->steps < 1 || f->steps > 1000) throw std::invalid_argument("steps per frame must lie in [1, 1000]");
       stepsPerFrame_ = f->steps;
@@ -182,6 +216,9 @@ void SimulationWorker::publish(double stepsPerSecond) {
   s.paused = paused_;
   s.generation = generation_;
   s.error = error_;
+  s.notice = notice_;
+  s.emitted = world_->emitted();
+  s.painted = world_->painted();
   frames_.publish();
 }
 

@@ -33,11 +33,20 @@ struct StepOnce {};
 struct Reset {};                      ///< back to the scene's start (with its current edits)
 struct Load { SceneSpec spec; };      ///< a new scene
 struct SetStepsPerFrame { int steps; };  ///< steps between published frames
+struct SetEffects { Effects effects; };  ///< e.g. rain on/off: takes effect with a reset
+/// Files, written or read by the worker (it owns the World): the edited scene as JSON, a
+/// checkpoint, the terrain as a 16-bit PNG, raw float, OBJ mesh or erosion map.
+struct Save {
+  enum class Kind { kScene, kCheckpoint, kHeightPng, kHeightRaw, kMesh, kErosionMap } kind;
+  std::string path;
+};
+struct LoadCheckpoint { std::string path; };
 }  // namespace cmd
 
-using Command = std::variant<cmd::SetParam, cmd::AddSource, cmd::UpdateSource, cmd::RemoveSource,
+using SimCommand = std::variant<cmd::SetParam, cmd::AddSource, cmd::UpdateSource, cmd::RemoveSource,
                              cmd::AddSink, cmd::RemoveSink, cmd::PaintWater, cmd::Pause, cmd::Resume,
-                             cmd::StepOnce, cmd::Reset, cmd::Load, cmd::SetStepsPerFrame>;
+                             cmd::StepOnce, cmd::Reset, cmd::Load, cmd::SetStepsPerFrame,
+                             cmd::SetEffects, cmd::Save, cmd::LoadCheckpoint>;
 
 /// What the worker publishes: the frame and the run's figures at that step.
 struct Snapshot {
@@ -51,6 +60,8 @@ struct Snapshot {
   bool paused = false;
   long generation = 0;        ///< counts resets and loads
   std::string error;          ///< the last command or step that failed (shown in the log)
+  std::string notice;         ///< the last file written or read
+  long emitted = 0, painted = 0;  ///< particles made by sources, by the brush
 };
 
 class SimulationWorker {
@@ -61,7 +72,7 @@ class SimulationWorker {
   SimulationWorker(const SimulationWorker&) = delete;
   SimulationWorker& operator=(const SimulationWorker&) = delete;
 
-  void post(Command c);
+  void post(SimCommand c);
   /// The newest snapshot if a new one was published since the last call; then latest() holds it.
   bool poll() { return frames_.take(); }
   const Snapshot& latest() const { return frames_.front(); }
@@ -70,14 +81,14 @@ class SimulationWorker {
 
  private:
   void run();
-  void applyAll(std::deque<Command>& commands);
-  void apply(Command& c);
+  void applyAll(std::deque<SimCommand>& commands);
+  void apply(SimCommand& c);
   void publish(double stepsPerSecond);
   void rebuild();
 
   mutable std::mutex mutex_;  // guards queue_, stop_ and spec_
   std::condition_variable wake_;
-  std::deque<Command> queue_;
+  std::deque<SimCommand> queue_;
   bool stop_ = false;
   SceneSpec spec_;
   // The worker's own (touched only by its thread).
@@ -86,7 +97,7 @@ class SimulationWorker {
   int stepsPerFrame_ = 1;
   long stepsToDo_ = 0;
   long generation_ = 0;
-  std::string error_;
+  std::string error_, notice_;
   TripleBuffer<Snapshot> frames_;
   std::thread thread_;
 };

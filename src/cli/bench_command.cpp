@@ -3,9 +3,12 @@
 #include <algorithm>
 #include <chrono>
 #include <memory>
+#include <thread>
 #include <cstdio>
 #include <iostream>
 
+#include "app/app.h"
+#include "app/worker.h"
 #include "cli/commands.h"
 #include "cli/render_options.h"
 #include "render/renderer.h"
@@ -29,6 +32,8 @@ struct BenchOptions {
   bool ablation = false;
   bool render = false;
   bool paper = false;
+  bool withWindow = false;
+  double seconds = 5;
   std::string size = "960x540";
   std::vector<std::string> sets;
 };
@@ -250,9 +255,46 @@ int benchPaper(const BenchOptions& o) {
   return kExitOk;
 }
 
+// Engine throughput with the window open (drawing every frame it can) and with no window, the
+// same scene and time each.
+int benchWindow(const BenchOptions& o, const Scene& scene) {
+  double alone = 0;
+  {
+    SimulationWorker worker(scene.spec);
+    while (!worker.poll()) std::this_thread::sleep_for(std::chrono::milliseconds(1));
+    const long s0 = worker.latest().frame.step;
+    const auto t0 = std::chrono::steady_clock::now();
+    std::this_thread::sleep_for(std::chrono::duration<double>(o.seconds));
+    while (!worker.poll()) std::this_thread::sleep_for(std::chrono::milliseconds(1));
+    alone = double(worker.latest().frame.step - s0) /
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  }
+  AppOptions a;
+  a.width = 960, a.height = 540;
+  a.quitAfterSeconds = o.seconds;
+  AppOptions::Stats st;
+  a.stats = &st;
+  runApp(scene.spec, a);
+  const double windowed = double(st.steps) / st.seconds;
+  json j = {{"scene", o.scene}, {"particles", scene.desc.particles.size()}, {"seconds", o.seconds},
+            {"threads", omp_get_max_threads()}, {"steps_per_second_no_window", alone},
+            {"steps_per_second_with_window", windowed}, {"window_frames_per_second", double(st.frames) / st.seconds},
+            {"ratio", windowed / std::max(alone, 1e-12)}};
+  if (o.json) {
+    std::cout << j.dump(2) << "\n";
+    return kExitOk;
+  }
+  std::printf("engine steps per second, %s (%zu particles), %.0f s each: no window %.1f, window open %.1f "
+              "(%.0f%%; the window drew %.1f frames/s)\n",
+              o.scene.c_str(), scene.desc.particles.size(), o.seconds, alone, windowed, 100 * windowed / alone,
+              double(st.frames) / st.seconds);
+  return kExitOk;
+}
+
 int bench(const BenchOptions& o) {
   setThreads(o.threads);
   if (o.paper) return benchPaper(o);
+  if (o.withWindow) return benchWindow(o, loadScene(o.scene, o.scale, o.particles, o.sets));
   Scene scene = loadScene(o.scene, o.scale, o.particles, o.sets);
   if (o.ablation) return ablation(o, scene);
   if (o.render) return benchRender(o, scene);
@@ -354,6 +396,9 @@ Command addBenchCommand(CLI::App& app) {
   c->add_flag("--render", o->render,
               "Time the renderer instead: splat, occupancy, march, shading, with and without the occupancy grid");
   c->add_option("--size", o->size, "Picture size for --render (default 960x540)");
+  c->add_flag("--with-window", o->withWindow,
+              "Engine steps per second with the window open and with none (needs a display)");
+  c->add_option("--seconds", o->seconds, "How long each --with-window phase runs (default 5)")->check(kPositive);
   c->add_flag("--paper", o->paper,
               "The paper's Table 1 beside ours: canyon, lake and waterfall at the paper's counts");
   c->add_flag("--ablation", o->ablation,

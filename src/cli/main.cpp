@@ -20,6 +20,7 @@ int main(int argc, char** argv) {
   app.add_option("--quit-after-frames", window.quitAfterFrames, "Close the window after N frames")->check(kPositive);
   app.add_option("--screenshot", window.screenshot, "On closing, save the last frame's picture (.png)");
   app.add_flag("--paused", window.paused, "Start paused");
+  app.add_option("--replay", window.replay, "Play scripted input events from a file (docs/app.md)");
   std::string windowTerrain = "erosion";
   app.add_option("--terrain", windowTerrain, "Terrain colours at the start: erosion (default), shaded, sediment");
   Command run = addRunCommand(app);
@@ -57,6 +58,13 @@ int main(int argc, char** argv) {
     else if (windowTerrain == "sediment") window.terrain = 2;
     else throw InputError("--terrain: expected erosion, shaded or sediment, found '" + windowTerrain + "'");
     const Scene scene = loadScene(windowScene, windowScale, 0, {});
+    if (!window.replay.empty()) {
+      try {
+        readReplay(window.replay);  // refused before any window opens
+      } catch (const std::invalid_argument& e) {
+        throw InputError(std::string("--replay: ") + e.what());
+      }
+    }
     return runApp(scene.spec, window);
   } catch (const InputError& e) {
     std::cerr << "error: " << e.what() << "\n";

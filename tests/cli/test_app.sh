@@ -23,3 +23,35 @@ set -e
 [ $rc -eq 2 ] && grep -qF -- "--size: expected WxH" <<<"$msg" && [ ! -e "$tmp/never.png" ] \
   || { echo "bad --size: $rc $msg"; exit 1; }
 echo "bad window options refused"
+# A scripted interaction: click the terrain in the middle of the window to place a source, and
+# set Kε through the panel's path. Afterwards the engine reports the new Kε and particles have
+# come out near the clicked point.
+cat > "$tmp/script.txt" <<'SCRIPT'
+# frame action arguments
+3 place on
+4 click 320 200
+6 set erosion.k_eps 0.35
+SCRIPT
+out=$(xvfb-run -a -s "-screen 0 800x600x24" "$scour" --scale 0.1 --size 640x400 --replay "$tmp/script.txt" \
+      --quit-after-frames 120 2>&1)
+grep -q "erosion.k_eps 0.35" <<<"$out" || { echo "Kε not set: $out"; exit 1; }
+grep -q "log: source placed at" <<<"$out" || { echo "no source placed: $out"; exit 1; }
+near=$(sed -n 's/.*particles within 0.25 m of the last placed source \([0-9]*\).*/\1/p' <<<"$out")
+emitted=$(sed -n 's/.*; emitted \([0-9]*\);.*/\1/p' <<<"$out")
+[ "${near:-0}" -ge 10 ] && [ "${emitted:-0}" -ge 10 ] || { echo "too few particles from the new source: $out"; exit 1; }
+echo "replay: $(head -1 <<<"$out")"
+# A bad replay file: exit 2 with the line named, before any window opens.
+printf '3 place on\n5 jump 1 2\n' > "$tmp/bad.txt"
+set +e
+msg=$("$scour" --replay "$tmp/bad.txt" 2>&1); rc=$?
+set -e
+[ $rc -eq 2 ] && grep -qF "bad.txt:2: unknown action 'jump'" <<<"$msg" || { echo "bad replay: $rc $msg"; exit 1; }
+echo "bad replay refused: $msg"
+# bench --with-window: engine steps per second with the window open and with none.
+out=$(xvfb-run -a -s "-screen 0 1280x720x24" "$scour" bench default --scale 0.1 --with-window --seconds 1 --json 2>/dev/null | sed -n '/^{/,/^}/p')
+python3 -c "
+import json, sys
+d = json.loads(sys.argv[1])
+assert d['steps_per_second_no_window'] > 0 and d['steps_per_second_with_window'] > 0, d
+print('bench --with-window: %.1f steps/s alone, %.1f with the window' % (d['steps_per_second_no_window'], d['steps_per_second_with_window']))
+" "$out"
