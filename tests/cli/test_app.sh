@@ -32,7 +32,7 @@ cat > "$tmp/script.txt" <<'SCRIPT'
 4 click 320 200
 6 set erosion.k_eps 0.35
 SCRIPT
-out=$(xvfb-run -a -s "-screen 0 800x600x24" "$scour" --scale 0.1 --size 640x400 --replay "$tmp/script.txt" \
+out=$(xvfb-run -a -s "-screen 0 800x600x24" "$scour" --scale 0.2 --size 640x400 --replay "$tmp/script.txt" \
       --quit-after-frames 120 2>&1)
 grep -q "erosion.k_eps 0.35" <<<"$out" || { echo "Kε not set: $out"; exit 1; }
 grep -q "log: source placed at" <<<"$out" || { echo "no source placed: $out"; exit 1; }
@@ -48,7 +48,7 @@ set -e
 [ $rc -eq 2 ] && grep -qF "bad.txt:2: unknown action 'jump'" <<<"$msg" || { echo "bad replay: $rc $msg"; exit 1; }
 echo "bad replay refused: $msg"
 # bench --with-window: engine steps per second with the window open and with none.
-out=$(xvfb-run -a -s "-screen 0 1280x720x24" "$scour" bench default --scale 0.1 --with-window --seconds 1 --json 2>/dev/null | sed -n '/^{/,/^}/p')
+out=$(xvfb-run -a -s "-screen 0 1280x720x24" "$scour" bench default --scale 0.2 --with-window --seconds 1 --json 2>/dev/null | sed -n '/^{/,/^}/p')
 python3 -c "
 import json, sys
 d = json.loads(sys.argv[1])

@@ -92,7 +92,7 @@ TEST_CASE("the sediment-only scene runs without the fluid passes", "[effects]") 
 }
 
 TEST_CASE("live edits: parameters, sources, sinks and the water brush", "[effects][edits]") {
-  Scene s = makePreset("default", 0.1);
+  Scene s = makePreset("default", 0.2);
   World w(s.desc);
   w.step();
   // Parameters: a valid change applies; the particle-shaping ones are refused.
