@@ -140,6 +140,7 @@ int runApp(const SceneSpec& spec, const AppOptions& o) {
   float brushRadius = 4 * spec.params.spacing;
   char path[512] = "scour_out";
   Eigen::Vector3d lastSource = Eigen::Vector3d::Constant(NAN);
+
   long frames = 0;
   long lastGeneration = -1;
   std::deque<float> sph, erosion, boundary, render;
@@ -147,7 +148,37 @@ int runApp(const SceneSpec& spec, const AppOptions& o) {
   long lastStep = -1;
   std::vector<std::string> log;
   std::string lastError, lastNotice;
-  double lastX = 0, lastY = 0;
+  // Undo/redo of parameter and source edits: each edit keeps the commands that redo and undo it.
+  struct Edit {
+    std::vector<SimCommand> redo, undo;
+    std::string what, key;  // key: a parameter edit that a slider drag may extend
+  };
+  std::vector<Edit> undoStack, redoStack;
+  auto perform = [&](Edit e, bool extend) {
+    if (extend && !undoStack.empty() && !e.key.empty() && undoStack.back().key == e.key) {
+      undoStack.back().redo = e.redo;  // one drag, one edit: keep the value from before it
+    } else {
+      undoStack.push_back(e);
+    }
+    redoStack.clear();
+    for (const SimCommand& c : e.redo) worker.post(c);
+  };
+  auto undo = [&] {
+    if (undoStack.empty()) return;
+    Edit e = undoStack.back();
+    undoStack.pop_back();
+    for (const SimCommand& c : e.undo) worker.post(c);
+    log.push_back("undo: " + e.what);
+    redoStack.push_back(e);
+  };
+  auto redo = [&] {
+    if (redoStack.empty()) return;
+    Edit e = redoStack.back();
+    redoStack.pop_back();
+    for (const SimCommand& c : e.redo) worker.post(c);
+    log.push_back("redo: " + e.what);
+    undoStack.push_back(e);
+  };  double lastX = 0, lastY = 0;
   int stepsPerFrame = 1;
 
   while (!glfwWindowShouldClose(window)) {
@@ -206,12 +237,17 @@ int runApp(const SceneSpec& spec, const AppOptions& o) {
       s.radius = 3 * frame.spacing;
       s.direction = {0, -1, 0};
       s.rate = 50 * std::pow(double(frame.spacing), 2);  // about 1 m/s out of the disk
-      worker.post(cmd::AddSource{s});
+      perform({{cmd::AddSource{s}}, {cmd::RemoveSource{snap.sources.size()}}, "place a source", ""}, false);
       lastSource = s.center;
       log.push_back("source placed at (" + number(s.center.x()) + ", " + number(s.center.y()) + ", " + number(s.center.z()) + ")");
     };
-    auto setParameter = [&](const std::string& key, const std::string& value) {
-      worker.post(cmd::SetParam{key, value});
+    // A parameter edit, undoable; `extend` merges it into the previous edit of the same key
+    // (a slider being dragged).
+    auto setParameter = [&](const std::string& key, const std::string& value, bool extend = false) {
+      const ParamInfo* info = findParam(key);
+      std::string old = value;
+      if (info) old = info->choices ? info->choices[int(getParam(snap.params, *info))] : number(getParam(snap.params, *info));
+      perform({{cmd::SetParam{key, value}}, {cmd::SetParam{key, old}}, key + " = " + value, key}, extend);
     };
     // Scripted events of this frame.
     for (const ReplayEvent& e : replay) {
@@ -222,7 +258,9 @@ int runApp(const SceneSpec& spec, const AppOptions& o) {
       else if (w[0] == "brush") brushing = w[1] == "on", placing = placing && !brushing;
       else if (w[0] == "set") setParameter(w[1], w[2]);
       else if (w[0] == "press") {
-        if (w[1] == "play") worker.post(cmd::Resume{});
+        if (w[1] == "undo") undo();
+        else if (w[1] == "redo") redo();
+        else if (w[1] == "play") worker.post(cmd::Resume{});
         else if (w[1] == "pause") worker.post(cmd::Pause{});
         else if (w[1] == "step") worker.post(cmd::StepOnce{});
         else if (w[1] == "reset") worker.post(cmd::Reset{});
@@ -270,6 +308,16 @@ int runApp(const SceneSpec& spec, const AppOptions& o) {
     if (ImGui::Button("Step")) worker.post(cmd::StepOnce{});
     ImGui::SameLine();
     if (ImGui::Button("Reset")) worker.post(cmd::Reset{});
+    ImGui::SameLine();
+    if (ImGui::Button("Undo")) undo();
+    if (ImGui::IsItemHovered() && !undoStack.empty()) ImGui::SetTooltip("%s", undoStack.back().what.c_str());
+    ImGui::SameLine();
+    if (ImGui::Button("Redo")) redo();
+    if (ImGui::IsItemHovered() && !redoStack.empty()) ImGui::SetTooltip("%s", redoStack.back().what.c_str());
+    if (!io.WantCaptureKeyboard && io.KeyCtrl) {
+      if (ImGui::IsKeyPressed(ImGuiKey_Z)) undo();
+      if (ImGui::IsKeyPressed(ImGuiKey_Y)) redo();
+    }
     if (ImGui::SliderInt("steps per frame", &stepsPerFrame, 1, 50)) worker.post(cmd::SetStepsPerFrame{stepsPerFrame});
     ImGui::Text("t = %.3f s   step %ld   %zu particles", frame.time, frame.step, frame.particles());
     ImGui::Text("%.1f steps/s", snap.stepsPerSecond);
@@ -299,7 +347,7 @@ int runApp(const SceneSpec& spec, const AppOptions& o) {
         const bool logScale = p.min > 0 && p.max / p.min > 100;
         if (ImGui::SliderScalar(label.c_str(), ImGuiDataType_Double, &v, &p.min, &p.max, "%.4g",
                                 logScale ? ImGuiSliderFlags_Logarithmic : 0))
-          setParameter(key, number(v));
+          setParameter(key, number(v), ImGui::IsItemActive() && !ImGui::IsItemActivated());
       }
       if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s (%s): %s  range [%g, %g]", key.c_str(), p.symbol, p.help, p.min, p.max);
     }
@@ -364,9 +412,12 @@ int runApp(const SceneSpec& spec, const AppOptions& o) {
       changed |= ImGui::SliderFloat("radius [m]", &radius, frame.spacing, 50 * frame.spacing, "%.3g");
       if (changed) {
         s.rate = rate * 1e-3, s.radius = radius;
-        worker.post(cmd::UpdateSource{i, s});
+        perform({{cmd::UpdateSource{i, s}}, {cmd::UpdateSource{i, snap.sources[i]}}, "edit source " + std::to_string(i),
+                 "source" + std::to_string(i)},
+                ImGui::IsItemActive() && !ImGui::IsItemActivated());
       }
-      if (ImGui::Button("delete")) worker.post(cmd::RemoveSource{i});
+      if (ImGui::Button("delete"))
+        perform({{cmd::RemoveSource{i}}, {cmd::AddSource{snap.sources[i]}}, "delete source " + std::to_string(i), ""}, false);
       ImGui::PopID();
     }
     ImGui::End();

@@ -24,18 +24,21 @@ set -e
   || { echo "bad --size: $rc $msg"; exit 1; }
 echo "bad window options refused"
 # A scripted interaction: click the terrain in the middle of the window to place a source, and
-# set Kε through the panel's path. Afterwards the engine reports the new Kε and particles have
-# come out near the clicked point.
+# set Kε through the panel's path (0.35, then 0.5, then undo). Afterwards the engine reports
+# Kε = 0.35 and particles have come out near the clicked point.
 cat > "$tmp/script.txt" <<'SCRIPT'
 # frame action arguments
 3 place on
 4 click 320 200
 6 set erosion.k_eps 0.35
+10 set erosion.k_eps 0.5
+14 press undo
 SCRIPT
 out=$(xvfb-run -a -s "-screen 0 800x600x24" "$scour" --scale 0.2 --size 640x400 --replay "$tmp/script.txt" \
       --quit-after-frames 120 2>&1)
 grep -q "erosion.k_eps 0.35" <<<"$out" || { echo "Kε not set: $out"; exit 1; }
 grep -q "log: source placed at" <<<"$out" || { echo "no source placed: $out"; exit 1; }
+grep -q "log: undo: erosion.k_eps = 0.5" <<<"$out" || { echo "no undo: $out"; exit 1; }
 near=$(sed -n 's/.*particles within 0.25 m of the last placed source \([0-9]*\).*/\1/p' <<<"$out")
 emitted=$(sed -n 's/.*; emitted \([0-9]*\);.*/\1/p' <<<"$out")
 [ "${near:-0}" -ge 10 ] && [ "${emitted:-0}" -ge 10 ] || { echo "too few particles from the new source: $out"; exit 1; }
