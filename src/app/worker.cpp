@@ -116,14 +116,8 @@ void SimulationWorker::apply(SimCommand& c) {
   // Edits go to the World and to the spec (so a reset or a saved scene keeps them). A command
   // that fails leaves both as they were and says why in the next snapshot.
   try {
-    if (auto* s = std::get_if<cmd::SetParam>(&c)) {
-      SimParams p = world_->params();
-      std::string err = setParam(p, s->key, s->value);
-      if (!err.empty()) throw std::invalid_argument(err);
-      world_->setParams(p);
-      std::lock_guard<std::mutex> lock(mutex_);
-      setParam(spec_.params, s->key, s->value);
-    } else if (auto* a = std::get_if<cmd::AddSource>(&c)) {
+    // (Parameter edits never come here: applyAll batches them.)
+    if (auto* a = std::get_if<cmd::AddSource>(&c)) {
       world_->addSource(a->source);
       std::lock_guard<std::mutex> lock(mutex_);
       spec_.sources.push_back(a->source);
@@ -172,13 +166,11 @@ void SimulationWorker::apply(SimCommand& c) {
       using K = cmd::Save::Kind;
       switch (sv->kind) {
         case K::kScene: {
-          const SceneSpec spec = this->spec();
-          nlohmann::json j = sceneToJson(buildScene(spec));
-          j.erase("built");
+          const nlohmann::json j = specToJson(spec());
           writeAtomically(sv->path, [&](std::ostream& o) { o << j.dump(2) << "\n"; });
           break;
         }
-        case K::kCheckpoint: writeCheckpoint(sv->path, buildScene(this->spec()), *world_); break;
+        case K::kCheckpoint: writeCheckpoint(sv->path, spec(), *world_); break;
         case K::kHeightPng: writeHeightPng16(sv->path, world_->terrain()); break;
         case K::kHeightRaw: writeHeightRaw(sv->path, world_->terrain()); break;
         case K::kMesh: writeTerrainObj(sv->path, world_->terrain()); break;

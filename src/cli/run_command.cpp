@@ -208,7 +208,7 @@ int runScene(const RunOptions& o) {
       if (frames && world->steps() % o.framesEvery == 0)
         frames->write(makeFrame(*world), (dir / frameName(world->steps())).string());
       if (o.checkpointEvery > 0 && world->steps() % o.checkpointEvery == 0)
-        writeCheckpoint((dir / checkpointName(world->steps())).string(), scene, *world);
+        writeCheckpoint((dir / checkpointName(world->steps())).string(), scene.spec, *world);
       auto now = std::chrono::steady_clock::now();
       // A terminal gets a live bar; a log gets one plain line every few seconds.
       if (now - lastReport > (tty ? std::chrono::milliseconds(200) : std::chrono::milliseconds(5000))) {

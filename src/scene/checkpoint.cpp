@@ -26,9 +26,9 @@ void put(std::ostream& o, T v) {
 
 }  // namespace
 
-void writeCheckpoint(const std::string& path, const Scene& scene, const World& world) {
+void writeCheckpoint(const std::string& path, const SceneSpec& spec, const World& world) {
   std::ostringstream payload;
-  const std::string sceneText = sceneToJson(scene).dump();
+  const std::string sceneText = specToJson(spec).dump();
   put(payload, uint64_t(sceneText.size()));
   payload << sceneText;
   world.saveState(payload);

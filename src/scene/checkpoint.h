@@ -25,8 +25,9 @@ struct CheckpointError : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-/// Writes the scene and the world's state to `path` (atomically).
-void writeCheckpoint(const std::string& path, const Scene& scene, const World& world);
+/// Writes the scene (as its spec: a checkpoint need not build it) and the world's state to `path`
+/// (atomically).
+void writeCheckpoint(const std::string& path, const SceneSpec& spec, const World& world);
 
 /// A checkpoint read back: the scene (rebuilt from its JSON) and the world state to load.
 struct Checkpoint {

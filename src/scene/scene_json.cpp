@@ -170,8 +170,7 @@ json paramsToJson(const SimParams& p) {
   return out;
 }
 
-json sceneToJson(const Scene& scene) {
-  const SceneSpec& s = scene.spec;
+json specToJson(const SceneSpec& s) {
   json j;
   j["version"] = 1;
   j["name"] = s.name;
@@ -239,11 +238,17 @@ json sceneToJson(const Scene& scene) {
                     {"seed", r.seed}});
   j["rain"] = rain;
   if (s.has_camera) j["camera"] = {{"eye", vec(s.camera_eye)}, {"target", vec(s.camera_target)}};
+  return j;
+}
+
+json sceneToJson(const Scene& scene) {
+  json j = specToJson(scene.spec);
+  const SimParams& p = scene.spec.params;
   // What the spec built to (not read back): the grid and the particle count.
   const Heightfield& hf = scene.desc.terrain;
   j["built"] = {{"particles", scene.desc.particles.size()},
-                {"support_m", s.params.support()},
-                {"particle_mass_kg", s.params.particleMass()},
+                {"support_m", p.support()},
+                {"particle_mass_kg", p.particleMass()},
                 {"terrain_nx", hf.nx()},
                 {"terrain_nz", hf.nz()},
                 {"terrain_dx", hf.dx()},

@@ -19,7 +19,9 @@ struct SceneError : std::runtime_error {
 };
 
 nlohmann::json paramsToJson(const SimParams& p);
-/// The spec of a scene (what specFromJson reads) plus, under "built", what it built to.
+/// The spec of a scene: what specFromJson reads back.
+nlohmann::json specToJson(const SceneSpec& s);
+/// specToJson plus, under "built", what the spec built to (for people; not read back).
 nlohmann::json sceneToJson(const Scene& s);
 /// Reads a scene; `file` is used in messages. Throws SceneError.
 SceneSpec specFromJson(const nlohmann::json& j, const std::string& file);

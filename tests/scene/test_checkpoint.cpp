@@ -25,7 +25,7 @@ uint64_t runWithCheckpoint(const SceneSpec& spec, int at, int total, const fs::p
   World w(scene.desc);
   for (int k = 0; k < total; ++k) {
     w.step();
-    if (w.steps() == at) writeCheckpoint(file.string(), scene, w);
+    if (w.steps() == at) writeCheckpoint(file.string(), scene.spec, w);
   }
   return w.stateHash();
 }
