@@ -220,11 +220,11 @@ void World::removeParticles() {
   });
 }
 
-void World::emitAt(const Vec3f& pos, const Vec3f& vel, long& blocked, long& emitted, double clearance) {
+bool World::place(const Vec3f& pos, const Vec3f& vel, double clearance) {
   // The grid indexes the particles that existed at the last search; they have moved by far less
-  // than a cell since, so its 27 cells still hold every particle within a clearance (≤ Δs) of pos. Particles
-  // placed in this step (index ≥ the grid's count) are not in it: sources space their own slots
-  // Δs apart, and rain checks its drops of this step by brute force (there are few).
+  // than a cell since, so its 27 cells still hold every particle within a clearance (≤ Δs) of
+  // pos. Particles placed since (index ≥ the grid's count: this step's drops and layers, the
+  // brush's) are checked one by one; there are few.
   const float r2 = float(clearance * clearance * p_.spacing * p_.spacing);
   const size_t indexed = grid_.particleCount();
   bool occupied = false;
@@ -233,14 +233,10 @@ void World::emitAt(const Vec3f& pos, const Vec3f& vel, long& blocked, long& emit
   });
   for (size_t j = indexed; j < f_.size() && !occupied; ++j)
     occupied = (f_.x[j] - pos).squaredNorm() < r2;
-  if (occupied) {
-    ++blocked;
-    return;
-  }
+  if (occupied) return false;
   f_.push(pos, vel, nextId_++, float(p_.rest_density));
   vhat_.push_back(vel);
-  ++emitted;
-  ++emittedTotal_;
+  return true;
 }
 
 void World::emit() {
@@ -253,7 +249,11 @@ void World::emit() {
         e.travelled -= p_.spacing;
         const Eigen::Vector3d base = e.src.center + e.src.direction * e.travelled;
         const Vec3f vel = (e.src.direction * e.speed).cast<float>();
-        for (const auto& off : e.slots) emitAt((base + off).cast<float>(), vel, e.blocked, e.emitted);
+        for (const auto& off : e.slots) {
+          const bool placed = place((base + off).cast<float>(), vel);
+          ++(placed ? e.emitted : e.blocked);
+          emittedTotal_ += placed;
+        }
       }
     }
   });
@@ -273,8 +273,9 @@ void World::rain() {
         const auto [u, w] = RainState::point(rn.seed, r.drawn++);
         const double x = rn.lo_x + u * (rn.hi_x - rn.lo_x), z = rn.lo_z + w * (rn.hi_z - rn.lo_z);
         const double y = hf_.heightAt(x, z) + std::max(rn.drop_height, p_.spacing);
-        emitAt(Vec3f(float(x), float(y), float(z)), Vec3f(0, -float(rn.drop_speed), 0), r.blocked,
-               r.emitted);
+        const bool placed = place(Vec3f(float(x), float(y), float(z)), Vec3f(0, -float(rn.drop_speed), 0));
+        ++(placed ? r.emitted : r.blocked);
+        emittedTotal_ += placed;
       }
     }
   });
@@ -352,7 +353,7 @@ long World::addWater(const Eigen::Vector3d& centre, double radius) {
   const int n = int(std::ceil(radius / ds));
   // On the lattice of spacing Δs through the centre, so repeated strokes fill rather than pile up.
   const Eigen::Vector3d base = (centre / ds).array().round() * ds;
-  long blocked = 0, added = 0;
+  long added = 0;
   for (int k = -n; k <= n; ++k)
     for (int j = -n; j <= n; ++j)
       for (int i = -n; i <= n; ++i) {
@@ -360,10 +361,9 @@ long World::addWater(const Eigen::Vector3d& centre, double radius) {
         if ((x - centre).norm() > radius) continue;
         if (x.x() < hf_.x0() || x.x() > hf_.xMax() || x.z() < hf_.z0() || x.z() > hf_.zMax()) continue;
         if (x.y() < hf_.heightAt(x.x(), x.z()) + 0.5 * ds) continue;
-        emitAt(x.cast<float>(), Vec3f::Zero(), blocked, added, 0.95);  // water at rest: a full Δs apart
+        added += place(x.cast<float>(), Vec3f::Zero(), 0.95);  // water at rest: a full Δs apart
       }
-  emittedTotal_ -= added;  // the brush is not a source: counted apart
-  paintedTotal_ += added;
+  paintedTotal_ += added;  // the brush is not a source: counted apart
   return added;
 }
 

@@ -189,8 +189,8 @@ class World {
   void removeParticles();
   void emit();
   void rain();
-  /// Places a particle unless one lies closer than clearance·Δs (then counts it as blocked).
-  void emitAt(const Vec3f& pos, const Vec3f& vel, long& blocked, long& emitted, double clearance = 0.5);
+  /// Places a particle unless one lies closer than clearance·Δs; returns whether it did.
+  bool place(const Vec3f& pos, const Vec3f& vel, double clearance = 0.5);
   void checkInvariants();
   void sedimentWork();
   bool needsBoundary() const { return fx_.no_slip || fx_.erosion || fx_.deposition; }
