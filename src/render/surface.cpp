@@ -26,14 +26,12 @@ WaterSurface::WaterSurface(SurfaceSettings s)
   glCreateBuffers(1, &draw_);
   const GLuint empty[6] = {0, 1, 0, 0, 0, 0};
   glNamedBufferData(draw_, sizeof empty, empty, GL_DYNAMIC_DRAW);
-  glCreateQueries(GL_TIME_ELAPSED, 4, queries_);
 }
 
 WaterSurface::~WaterSurface() {
   GLuint buffers[] = {particles_, density_, occupancy_, list_, vertices_, draw_};
   for (GLuint b : buffers)
     if (b) glDeleteBuffers(1, &b);
-  glDeleteQueries(4, queries_);
 }
 
 void WaterSurface::layout(const Frame& f) {
@@ -60,7 +58,7 @@ void WaterSurface::layout(const Frame& f) {
 void WaterSurface::update(const Frame& f) {
   const GLuint emptyDraw[6] = {0, 1, 0, 0, 0, 0};
   glNamedBufferSubData(draw_, 0, sizeof emptyDraw, emptyDraw);
-  timed_ = false;
+  wall_[0] = wall_[1] = wall_[2] = 0;
   if (f.particles() == 0) {
     grid_ = DensityGrid{};
     return;
@@ -116,14 +114,11 @@ void WaterSurface::update(const Frame& f) {
     mark = now;
   };
   if (s_.profile) glFinish(), mark = Clock::now();
-  glBeginQuery(GL_TIME_ELAPSED, queries_[0]);
   glDispatchCompute(GLuint((n + 127) / 128), 1, 1);
-  glEndQuery(GL_TIME_ELAPSED);
   lap(0);
   glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
 
   // 2. list the occupied blocks
-  glBeginQuery(GL_TIME_ELAPSED, queries_[1]);
   if (s_.occupancy) {
     compact_.use();
     glUniform1ui(compact_.location("blockCount"), GLuint(grid_.blockCount()));
@@ -133,17 +128,13 @@ void WaterSurface::update(const Frame& f) {
     glDispatchCompute(1, 1, 1);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
   }
-  glEndQuery(GL_TIME_ELAPSED);
   lap(1);
 
   // 3. march
-  glBeginQuery(GL_TIME_ELAPSED, queries_[2]);
   march();
-  glEndQuery(GL_TIME_ELAPSED);
   lap(2);
   glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT |
                   GL_VERTEX_ATTRIB_ARRAY_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
-  timed_ = true;
 }
 
 void WaterSurface::march(bool countOnly) {
@@ -196,14 +187,7 @@ bool WaterSurface::growIfOverflowed() {
 
 WaterSurface::Timings WaterSurface::readTimings() const {
   Timings t;
-  if (!timed_) return t;
-  if (s_.profile) {
-    t.splat = wall_[0], t.occupancy = wall_[1], t.march = wall_[2];
-    return t;
-  }
-  GLuint64 ns[3] = {0, 0, 0};
-  for (int k = 0; k < 3; ++k) glGetQueryObjectui64v(queries_[k], GL_QUERY_RESULT, &ns[k]);
-  t.splat = double(ns[0]) * 1e-9, t.occupancy = double(ns[1]) * 1e-9, t.march = double(ns[2]) * 1e-9;
+  t.splat = wall_[0], t.occupancy = wall_[1], t.march = wall_[2];
   return t;
 }
 

@@ -27,8 +27,8 @@ struct SurfaceSettings {
   bool occupancy = true;           ///< visit only occupied blocks
   size_t max_nodes = size_t(1) << 25;      ///< density grid nodes at most (128 MB)
   size_t max_triangles = size_t(1) << 23;  ///< vertex buffer capacity at most (800 MB)
-  /// Wait for each step to finish and time it on the wall clock (bench): llvmpipe's timer
-  /// queries read 0. Stalls the pipeline, so off by default.
+  /// Wait for each step to finish and time it on the wall clock (bench; llvmpipe's GL timer
+  /// queries read 0). Stalls the pipeline, so off by default.
   bool profile = false;
 };
 
@@ -75,7 +75,7 @@ class WaterSurface {
   const DensityGrid& grid() const { return grid_; }  ///< geometry of the last update
   GLuint vertexBuffer() const { return vertices_; }  ///< vec4 position, vec4 normal per vertex
   GLuint drawBuffer() const { return draw_; }        ///< DrawArraysIndirectCommand
-  /// Seconds of GPU time of each step in the last update (GL timer queries; 0 until read).
+  /// Wall-clock seconds of each step of the last update, with `profile` on (else 0).
   struct Timings {
     double splat = 0, occupancy = 0, march = 0;
   };
@@ -95,9 +95,7 @@ class WaterSurface {
   Program splat_, compact_, finish_, march_;
   GLuint particles_ = 0, density_ = 0, occupancy_ = 0, list_ = 0, vertices_ = 0, draw_ = 0;
   size_t particleCap_ = 0, nodeCap_ = 0, blockCap_ = 0, listCap_ = 0, vertexCap_ = 0;
-  GLuint queries_[4] = {0, 0, 0, 0};
-  bool timed_ = false;
-  double wall_[3] = {0, 0, 0};
+  double wall_[3] = {0, 0, 0};  ///< seconds of the last update's steps, when profiling
 };
 
 }  // namespace scour
