@@ -163,22 +163,18 @@ int runApp(const SceneSpec& spec, const AppOptions& o) {
     redoStack.clear();
     for (const SimCommand& c : e.redo) worker.post(c);
   };
-  auto undo = [&] {
-    if (undoStack.empty()) return;
-    Edit e = undoStack.back();
-    undoStack.pop_back();
-    for (const SimCommand& c : e.undo) worker.post(c);
-    log.push_back("undo: " + e.what);
-    redoStack.push_back(e);
+  // Undo takes the newest edit off the undo stack and posts its undo commands; redo the reverse.
+  auto travel = [&](std::vector<Edit>& from, std::vector<Edit>& to, bool back) {
+    if (from.empty()) return;
+    Edit e = std::move(from.back());
+    from.pop_back();
+    for (const SimCommand& c : back ? e.undo : e.redo) worker.post(c);
+    log.push_back((back ? "undo: " : "redo: ") + e.what);
+    to.push_back(std::move(e));
   };
-  auto redo = [&] {
-    if (redoStack.empty()) return;
-    Edit e = redoStack.back();
-    redoStack.pop_back();
-    for (const SimCommand& c : e.redo) worker.post(c);
-    log.push_back("redo: " + e.what);
-    undoStack.push_back(e);
-  };  double lastX = 0, lastY = 0;
+  auto undo = [&] { travel(undoStack, redoStack, true); };
+  auto redo = [&] { travel(redoStack, undoStack, false); };
+  double lastX = 0, lastY = 0;
   int stepsPerFrame = 1;
 
   while (!glfwWindowShouldClose(window)) {

@@ -11,6 +11,7 @@
 #include "app/worker.h"
 #include "cli/commands.h"
 #include "cli/render_options.h"
+#include "render/context.h"
 #include "render/renderer.h"
 #include "scene/scene_json.h"
 
@@ -106,11 +107,8 @@ int benchRender(const BenchOptions& o, const Scene& scene) {
   World world(scene.desc);
   for (long s = 0; s < o.warmup; ++s) world.step();
   const Frame frame = makeFrame(world);
-  RenderOptions ro;
-  ro.size = o.size;
-  FrameWriter check(ro);  // validates --size and makes the context
-  int w = 0, h = 0;
-  std::sscanf(o.size.c_str(), "%dx%d", &w, &h);
+  const auto [w, h] = parseSize(o.size, 16);
+  const auto context = createGlContext(GlBackend::kEgl);
   Renderer r(w, h);
   const Camera cam = overviewCamera(frame);
   struct Result {

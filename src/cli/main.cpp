@@ -1,9 +1,11 @@
 // scour: the one binary. No subcommand: the window; subcommands: run, bench, render, presets.
 #include <cstdio>
 #include <iostream>
+#include <tuple>
 
 #include "app/app.h"
 #include "cli/commands.h"
+#include "cli/render_options.h"
 
 int main(int argc, char** argv) {
   using namespace scour;
@@ -46,17 +48,9 @@ int main(int argc, char** argv) {
     if (app.got_subcommand("bench")) return bench();
     if (app.got_subcommand("render")) return render();
     // The window.
-    char x = 0, extra = 0;
-    if (std::sscanf(windowSize.c_str(), "%d%c%d%c", &window.width, &x, &window.height, &extra) != 3 || x != 'x' ||
-        window.width < 64 || window.height < 64 || window.width > 8192 || window.height > 8192)
-      throw InputError("--size: expected WxH with each side in [64, 8192], found '" + windowSize + "'");
-    if (!window.screenshot.empty() && (window.screenshot.size() < 5 ||
-                                      window.screenshot.substr(window.screenshot.size() - 4) != ".png"))
-      throw InputError("--screenshot: expected a .png file name, found '" + window.screenshot + "'");
-    if (windowTerrain == "shaded") window.terrain = 0;
-    else if (windowTerrain == "erosion") window.terrain = 1;
-    else if (windowTerrain == "sediment") window.terrain = 2;
-    else throw InputError("--terrain: expected erosion, shaded or sediment, found '" + windowTerrain + "'");
+    std::tie(window.width, window.height) = parseSize(windowSize, 64);
+    if (!window.screenshot.empty()) requirePng("--screenshot", window.screenshot);
+    window.terrain = int(parseTerrain(windowTerrain));
     const Scene scene = loadScene(windowScene, windowScale, 0, {});
     if (!window.replay.empty()) {
       try {

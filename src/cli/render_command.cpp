@@ -11,6 +11,28 @@
 
 namespace scour {
 
+std::pair<int, int> parseSize(const std::string& text, int minSide) {
+  int w = 0, h = 0;
+  char x = 0, extra = 0;
+  if (std::sscanf(text.c_str(), "%d%c%d%c", &w, &x, &h, &extra) != 3 || x != 'x' || w < minSide ||
+      h < minSide || w > 8192 || h > 8192)
+    throw InputError("--size: expected WxH with each side in [" + std::to_string(minSide) + ", 8192], found '" +
+                     text + "'");
+  return {w, h};
+}
+
+RenderSettings::Terrain parseTerrain(const std::string& text) {
+  if (text == "erosion") return RenderSettings::Terrain::kErosion;
+  if (text == "shaded") return RenderSettings::Terrain::kShaded;
+  if (text == "sediment") return RenderSettings::Terrain::kSediment;
+  throw InputError("--terrain: expected erosion, shaded or sediment, found '" + text + "'");
+}
+
+void requirePng(const std::string& flag, const std::string& path) {
+  if (path.size() < 5 || path.substr(path.size() - 4) != ".png")
+    throw InputError(flag + ": expected a .png file name, found '" + path + "'");
+}
+
 void addRenderOptions(CLI::App* c, RenderOptions& o) {
   c->add_option("--gl", o.gl, "GL context: egl (default), osmesa, window");
   c->add_option("--size", o.size, "Picture size WxH (default 960x540)");
@@ -33,16 +55,9 @@ struct FrameWriter::Impl {
 };
 
 FrameWriter::FrameWriter(const RenderOptions& o) : impl_(std::make_unique<Impl>()) {
-  int w = 0, h = 0;
-  char x = 0, extra = 0;
-  if (std::sscanf(o.size.c_str(), "%d%c%d%c", &w, &x, &h, &extra) != 3 || x != 'x' || w < 16 ||
-      h < 16 || w > 8192 || h > 8192)
-    throw InputError("--size: expected WxH with each side in [16, 8192], found '" + o.size + "'");
+  const auto [w, h] = parseSize(o.size, 16);
   RenderSettings& s = impl_->settings;
-  if (o.terrain == "erosion") s.terrain = RenderSettings::Terrain::kErosion;
-  else if (o.terrain == "shaded") s.terrain = RenderSettings::Terrain::kShaded;
-  else if (o.terrain == "sediment") s.terrain = RenderSettings::Terrain::kSediment;
-  else throw InputError("--terrain: expected erosion, shaded or sediment, found '" + o.terrain + "'");
+  s.terrain = parseTerrain(o.terrain);
   if (o.particles == "off") s.particles = RenderSettings::Particles::kOff;
   else if (o.particles == "sediment") s.particles = RenderSettings::Particles::kSediment;
   else if (o.particles == "speed") s.particles = RenderSettings::Particles::kSpeed;
@@ -109,8 +124,7 @@ int renderPicture(const RenderCommandOptions& o) {
   } catch (const std::invalid_argument& e) {
     throw InputError(o.source + ": " + e.what());
   }
-  if (o.out.size() < 5 || o.out.substr(o.out.size() - 4) != ".png")
-    throw InputError("--out: expected a .png file name, found '" + o.out + "'");
+  requirePng("--out", o.out);
   FrameWriter writer(o.render);
   if (scene.spec.has_camera)
     writer.setSceneCamera(scene.spec.camera_eye.cast<float>(), scene.spec.camera_target.cast<float>());

@@ -3,9 +3,11 @@
 #include <CLI/CLI.hpp>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "engine/frame.h"
+#include "render/renderer.h"
 
 namespace scour {
 
@@ -18,6 +20,13 @@ struct RenderOptions {
   std::vector<float> camera;  ///< eye x y z, target x y z (empty: the scene's, or the overview)
   double surfaceCell = 0.75;  ///< density grid cell / Δs
 };
+
+/// "WxH" with each side in [minSide, 8192]; InputError naming --size otherwise.
+std::pair<int, int> parseSize(const std::string& text, int minSide);
+/// "erosion", "shaded" or "sediment"; InputError naming --terrain otherwise.
+RenderSettings::Terrain parseTerrain(const std::string& text);
+/// A picture file name must end in .png; InputError naming the flag otherwise.
+void requirePng(const std::string& flag, const std::string& path);
 
 /// Registers --gl, --size, --terrain, --particles, --no-water, --no-reflections,
 /// --no-refraction, --no-caustics and --camera on a subcommand.
