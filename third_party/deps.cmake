@@ -5,6 +5,8 @@ find_package(OpenMP REQUIRED)
 find_package(nlohmann_json 3.10 REQUIRED)
 find_package(CLI11 2.1 REQUIRED)
 find_package(PNG REQUIRED)
+# nanoflann (libnanoflann-dev, header-only): the kd-tree neighbor search, engine.neighbor_search.
+find_package(nanoflann 1.4 REQUIRED)
 
 # Catch2 2.x ships a single header (catch2/catch.hpp) and a CMake config.
 find_package(Catch2 2.13 REQUIRED)

@@ -15,6 +15,7 @@
 #include <cstdlib>
 #include <fstream>
 #include <map>
+#include <optional>
 #include <sstream>
 
 #include "app/worker.h"
@@ -50,6 +51,20 @@ Orbit orbitFor(const Frame& f) {
   return o;
 }
 
+// The frame's terrain height at (x, z), bilinear between vertices; false off the grid.
+bool terrainHeight(const Frame& f, double px, double pz, float& hgt) {
+  const double u = (px - f.x0) / f.dx, v = (pz - f.z0) / f.dz;
+  if (!(u >= 0 && v >= 0 && u <= f.nx - 1 && v <= f.nz - 1) || f.nx < 2 || f.nz < 2) return false;
+  const int i = std::min(int(u), f.nx - 2), k = std::min(int(v), f.nz - 2);
+  const float fu = float(u - i), fv = float(v - k);
+  auto at = [&](int di, int dk) {
+    return f.height[size_t(k + dk) * size_t(f.nx) + size_t(i + di)];
+  };
+  hgt =
+      (1 - fv) * ((1 - fu) * at(0, 0) + fu * at(1, 0)) + fv * ((1 - fu) * at(0, 1) + fu * at(1, 1));
+  return true;
+}
+
 // The point of the terrain under the mouse: march along the ray through the pixel.
 bool pickTerrain(const Frame& f, const Camera& c, float aspect, double mx, double my, int w, int h,
                  Eigen::Vector3f& hit) {
@@ -58,15 +73,7 @@ bool pickTerrain(const Frame& f, const Camera& c, float aspect, double mx, doubl
   Eigen::Vector4f a = inv * Eigen::Vector4f(x, y, -1, 1), b = inv * Eigen::Vector4f(x, y, 1, 1);
   const Eigen::Vector3f p0 = a.head<3>() / a.w(), p1 = b.head<3>() / b.w();
   const Eigen::Vector3f dir = (p1 - p0).normalized();
-  auto height = [&](float px, float pz, float& hgt) {
-    const double u = (px - f.x0) / f.dx, v = (pz - f.z0) / f.dz;
-    if (u < 0 || v < 0 || u > f.nx - 1 || v > f.nz - 1) return false;
-    const int i = std::min(int(u), f.nx - 2), k = std::min(int(v), f.nz - 2);
-    const float fu = float(u - i), fv = float(v - k);
-    auto at = [&](int di, int dk) { return f.height[size_t(k + dk) * size_t(f.nx) + size_t(i + di)]; };
-    hgt = (1 - fv) * ((1 - fu) * at(0, 0) + fu * at(1, 0)) + fv * ((1 - fu) * at(0, 1) + fu * at(1, 1));
-    return true;
-  };
+  auto height = [&](float px, float pz, float& hgt) { return terrainHeight(f, px, pz, hgt); };
   const float step = float(std::min(f.dx, f.dz)) * 0.5f;
   Eigen::Vector3f p = p0;
   for (int s = 0; s < 200000; ++s, p += step * dir) {
@@ -78,6 +85,37 @@ bool pickTerrain(const Frame& f, const Camera& c, float aspect, double mx, doubl
     if ((p - p0).norm() > 1000) break;
   }
   return false;
+}
+
+// The window pixel (x right, y down) a world point projects to: pickTerrain's inverse. False
+// behind the camera.
+bool toWindow(const Camera& c, float aspect, const Eigen::Vector3f& p, int w, int h, ImVec2& out) {
+  const Eigen::Vector4f q =
+      c.projection(aspect, 0.01f, 1000.0f) * c.view() * Eigen::Vector4f(p.x(), p.y(), p.z(), 1);
+  if (!(q.w() > 1e-6f)) return false;
+  out = {float((q.x() / q.w() + 1) * 0.5 * w), float((1 - q.y() / q.w()) * 0.5 * h)};
+  return std::isfinite(out.x) && std::isfinite(out.y);
+}
+
+// Pixels from p to the segment ab.
+float segmentDistance(ImVec2 p, ImVec2 a, ImVec2 b) {
+  const float ux = b.x - a.x, uy = b.y - a.y, len2 = ux * ux + uy * uy;
+  const float t =
+      len2 > 0 ? std::clamp(((p.x - a.x) * ux + (p.y - a.y) * uy) / len2, 0.0f, 1.0f) : 0.0f;
+  return std::hypot(p.x - a.x - t * ux, p.y - a.y - t * uy);
+}
+
+// A source's centre moved so its disk lies over the terrain (a disk reaching past a closed wall
+// would emit particles outside it), at `lift` above the terrain there. Unchanged when the terrain
+// is narrower than the disk.
+Eigen::Vector3d overTerrain(const Frame& f, Eigen::Vector3d c, double radius, double lift) {
+  const double x1 = f.x0 + (f.nx - 1) * f.dx, z1 = f.z0 + (f.nz - 1) * f.dz;
+  if (x1 - f.x0 > 2 * radius) c.x() = std::clamp(c.x(), f.x0 + radius, x1 - radius);
+  if (z1 - f.z0 > 2 * radius) c.z() = std::clamp(c.z(), f.z0 + radius, z1 - radius);
+  float g = float(c.y());
+  terrainHeight(f, c.x(), c.z(), g);
+  c.y() = g + lift;
+  return c;
 }
 
 std::string number(double v) {
@@ -94,10 +132,11 @@ std::vector<ReplayEvent> readReplay(const std::string& path) {
   std::vector<ReplayEvent> events;
   std::string line;
   for (int n = 1; std::getline(in, line); ++n) {
+    line = line.substr(0, line.find('#'));  // `#` starts a comment, also after an event
     std::istringstream words(line);
     std::string w;
     ReplayEvent e{0, {}};
-    if (!(words >> w) || w[0] == '#') continue;
+    if (!(words >> w)) continue;
     char* end = nullptr;
     e.frame = std::strtol(w.c_str(), &end, 10);
     const std::string at = path + ":" + std::to_string(n) + ": ";
@@ -105,13 +144,40 @@ std::vector<ReplayEvent> readReplay(const std::string& path) {
     while (words >> w) e.words.push_back(w);
     if (e.words.empty()) throw std::invalid_argument(at + "an action must follow the frame number");
     const std::string& a = e.words[0];
-    const std::map<std::string, size_t> arity = {{"click", 3}, {"place", 2}, {"brush", 2}, {"set", 3},
-                                                 {"press", 2}, {"screenshot", 2}};
+    const std::map<std::string, size_t> arity = {{"click", 3}, {"drag", 5},    {"place", 2},
+                                                 {"sink", 2},  {"brush", 2},   {"set", 3},
+                                                 {"press", 2}, {"restore", 2}, {"screenshot", 2}};
     auto it = arity.find(a);
     if (it == arity.end())
-      throw std::invalid_argument(at + "unknown action '" + a + "' (click, place, brush, set, press, screenshot)");
+      throw std::invalid_argument(
+          at + "unknown action '" + a +
+          "' (click, drag, place, sink, brush, set, press, restore, screenshot)");
     if (e.words.size() != it->second)
       throw std::invalid_argument(at + "'" + a + "' takes " + std::to_string(it->second - 1) + " argument(s)");
+    // The arguments are checked here, so a script never fails half-way through a run.
+    auto isNumber = [](const std::string& s) {
+      char* stop = nullptr;
+      const double v = std::strtod(s.c_str(), &stop);
+      return !s.empty() && *stop == 0 && std::isfinite(v);
+    };
+    if (a == "click" || a == "drag")
+      for (size_t k = 1; k < e.words.size(); ++k)
+        if (!isNumber(e.words[k]))
+          throw std::invalid_argument(at + "'" + a + "' takes window pixels, found '" + e.words[k] +
+                                      "'");
+    if ((a == "place" || a == "sink" || a == "brush") && e.words[1] != "on" && e.words[1] != "off")
+      throw std::invalid_argument(at + "'" + a + "' takes on or off, found '" + e.words[1] + "'");
+    static const char* const kButtons[] = {"play", "pause", "step",    "reset",
+                                           "undo", "redo",  "snapshot"};
+    if (a == "press" &&
+        std::find(std::begin(kButtons), std::end(kButtons), e.words[1]) == std::end(kButtons))
+      throw std::invalid_argument(
+          at + "'press' takes play, pause, step, reset, undo, redo or snapshot, found '" +
+          e.words[1] + "'");
+    if (a == "restore" &&
+        (e.words[1].find_first_not_of("0123456789") != std::string::npos || e.words[1].size() > 9))
+      throw std::invalid_argument(at + "'restore' takes a snapshot number, found '" + e.words[1] +
+                                  "'");
     events.push_back(e);
   }
   return events;
@@ -136,10 +202,15 @@ int runApp(const SceneSpec& spec, const AppOptions& o) {
   RenderSettings settings;
   settings.terrain = RenderSettings::Terrain(o.terrain);
   Orbit orbit;
-  bool haveCamera = false, placing = false, brushing = false;
+  bool haveCamera = false;
+  // What a left click on the terrain does (a press on a source's marker always drags it).
+  enum class Tool { kOrbit, kSource, kSink, kBrush } tool = Tool::kOrbit;
+  auto toggle = [&](Tool t, bool on) { tool = on ? t : (tool == t ? Tool::kOrbit : tool); };
   float brushRadius = 4 * spec.params.spacing;
+  float sinkRadius = 3 * spec.params.spacing;
   char path[512] = "scour_out";
-  Eigen::Vector3d lastSource = Eigen::Vector3d::Constant(NAN);
+  Eigen::Vector3d lastSource = Eigen::Vector3d::Constant(NAN);  // placed or moved (the exit line)
+  double lastRadius = 0;
 
   long frames = 0;
   long lastGeneration = -1;
@@ -174,6 +245,36 @@ int runApp(const SceneSpec& spec, const AppOptions& o) {
   };
   auto undo = [&] { travel(undoStack, redoStack, true); };
   auto redo = [&] { travel(redoStack, undoStack, false); };
+  // A restored snapshot brings back its own sources and sinks: edits made before it would undo
+  // onto the wrong ones, so the history starts afresh.
+  auto restoreSnapshot = [&](int id) {
+    worker.post(cmd::RestoreSnapshot{id});  // an unknown one: the worker says so
+    const auto& kept = worker.latest().snapshots;
+    if (std::none_of(kept.begin(), kept.end(), [&](const SnapshotInfo& k) { return k.id == id; }))
+      return;
+    undoStack.clear();
+    redoStack.clear();
+    log.push_back("restoring snapshot " + std::to_string(id) + " (undo history cleared)");
+  };
+  // A source being dragged across the terrain: every move is an UpdateSource, and the moves of
+  // one drag merge into one undoable edit (like a slider drag). It keeps its height above the
+  // terrain, its direction, rate and radius.
+  struct SourceDrag {
+    int index = -1;   ///< -1: none
+    Source start;     ///< as it was at the press (what undo brings back)
+    double lift = 0;  ///< its height above the terrain [m]
+    bool moved = false;
+    Eigen::Vector3d last = Eigen::Vector3d::Zero();
+  } drag;
+  // A scripted drag (replay `drag x0 y0 x1 y1`): press, kDragSteps moves, release, a frame each.
+  struct ScriptedDrag {
+    long start;
+    double x0, y0, x1, y1;
+  };
+  std::optional<ScriptedDrag> scripted;
+  constexpr int kDragSteps = 8;
+  constexpr float kMarkerPixels = 10;  // how near a press must be to a marker to grab it
+  bool cancelled = false;  // a drag cancelled with Escape: the mouse rests till released
   double lastX = 0, lastY = 0;
   int stepsPerFrame = 1;
 
@@ -210,6 +311,32 @@ int runApp(const SceneSpec& spec, const AppOptions& o) {
     glfwGetFramebufferSize(window, &fbw, &fbh);
     fbw = std::max(fbw, 16), fbh = std::max(fbh, 16);
     renderer.resize(fbw, fbh);
+    int ww = 0, wh = 0;
+    glfwGetWindowSize(window, &ww, &wh);
+    ww = std::max(ww, 1), wh = std::max(wh, 1);
+    const float aspect = float(fbw) / float(fbh);
+
+    // Markers: a source is drawn as a stem from the terrain under it up to its centre; a press
+    // within kMarkerPixels of the stem grabs it (the nearest one).
+    auto sourceStem = [&](const Eigen::Vector3d& centre, ImVec2& foot, ImVec2& top) {
+      float g = 0;
+      const Eigen::Vector3f c = centre.cast<float>();
+      const Eigen::Vector3f base =
+          terrainHeight(frame, c.x(), c.z(), g) ? Eigen::Vector3f(c.x(), g, c.z()) : c;
+      return toWindow(orbit.camera(), aspect, c, ww, wh, top) &&
+             toWindow(orbit.camera(), aspect, base, ww, wh, foot);
+    };
+    auto sourceUnder = [&](double mx, double my) {
+      int best = -1;
+      float bestDistance = kMarkerPixels;
+      for (size_t i = 0; i < snap.sources.size(); ++i) {
+        ImVec2 foot, top;
+        if (!sourceStem(snap.sources[i].center, foot, top)) continue;
+        const float d = segmentDistance({float(mx), float(my)}, foot, top);
+        if (d <= bestDistance) best = int(i), bestDistance = d;
+      }
+      return best;
+    };
 
     // Mouse: orbit (left drag), pan (right drag), zoom (wheel); a click places a source when
     // the Water panel's "place" mode is on. Only when ImGui does not want the mouse.
@@ -217,25 +344,71 @@ int runApp(const SceneSpec& spec, const AppOptions& o) {
     // take this same path).
     auto clickAt = [&](double cx, double cy) {
       Eigen::Vector3f hit;
-      int ww = 0, wh = 0;
-      glfwGetWindowSize(window, &ww, &wh);
-      if (!pickTerrain(frame, orbit.camera(), float(fbw) / float(fbh), cx, cy, ww, wh, hit)) {
+      if (!pickTerrain(frame, orbit.camera(), aspect, cx, cy, ww, wh, hit)) {
         log.push_back("no terrain under the mouse");
         return;
       }
-      if (brushing) {
+      if (tool == Tool::kSink) {
+        // A box of half-size r around the hit: it takes the water (and what it carries) out.
+        Sink k;
+        k.lo = hit.cast<double>() - Eigen::Vector3d::Constant(sinkRadius);
+        k.hi = hit.cast<double>() + Eigen::Vector3d::Constant(sinkRadius);
+        perform({{cmd::AddSink{k}}, {cmd::RemoveSink{snap.sinks.size()}}, "place a sink", ""},
+                false);
+        log.push_back("sink placed at (" + number(hit.x()) + ", " + number(hit.y()) + ", " +
+                      number(hit.z()) + "), half-size " + number(sinkRadius) + " m");
+        return;
+      }
+      if (tool == Tool::kBrush) {
         worker.post(cmd::PaintWater{hit.cast<double>() + Eigen::Vector3d(0, brushRadius, 0), brushRadius});
         log.push_back("painted water at (" + number(hit.x()) + ", " + number(hit.y()) + ", " + number(hit.z()) + ")");
         return;
       }
       Source s;
-      s.center = hit.cast<double>() + Eigen::Vector3d(0, 6 * frame.spacing, 0);
       s.radius = 3 * frame.spacing;
+      s.center = overTerrain(frame, hit.cast<double>(), s.radius, 6 * frame.spacing);
       s.direction = {0, -1, 0};
       s.rate = 50 * std::pow(double(frame.spacing), 2);  // about 1 m/s out of the disk
       perform({{cmd::AddSource{s}}, {cmd::RemoveSource{snap.sources.size()}}, "place a source", ""}, false);
-      lastSource = s.center;
+      lastSource = s.center, lastRadius = s.radius;
       log.push_back("source placed at (" + number(s.center.x()) + ", " + number(s.center.y()) + ", " + number(s.center.z()) + ")");
+    };
+    // Dragging a source: the real mouse and the replay take these same three steps.
+    auto pressAt = [&](double cx, double cy) {
+      const int i = sourceUnder(cx, cy);
+      if (i < 0) return false;
+      drag = SourceDrag{};
+      drag.index = i;
+      drag.start = snap.sources[size_t(i)];
+      float g = 0;
+      const Eigen::Vector3d& c = drag.start.center;
+      drag.lift = terrainHeight(frame, c.x(), c.z(), g) ? c.y() - g : 6 * frame.spacing;
+      return true;
+    };
+    auto dragTo = [&](double cx, double cy) {
+      Eigen::Vector3f hit;
+      if (drag.index < 0 || !pickTerrain(frame, orbit.camera(), aspect, cx, cy, ww, wh, hit))
+        return;  // off the terrain: it waits
+      Source s = drag.start;
+      s.center = overTerrain(frame, hit.cast<double>(), s.radius, drag.lift);
+      if (drag.moved && (s.center - drag.last).norm() < 1e-9) return;
+      const std::string what = "move source " + std::to_string(drag.index);
+      perform({{cmd::UpdateSource{size_t(drag.index), s}},
+               {cmd::UpdateSource{size_t(drag.index), drag.start}},
+               what,
+               what},
+              drag.moved);
+      drag.moved = true;
+      drag.last = s.center;
+    };
+    auto release = [&] {
+      if (drag.index >= 0 && drag.moved) {
+        lastSource = drag.last, lastRadius = drag.start.radius;
+        log.push_back("source " + std::to_string(drag.index) + " moved to (" +
+                      number(drag.last.x()) + ", " + number(drag.last.y()) + ", " +
+                      number(drag.last.z()) + ")");
+      }
+      drag = SourceDrag{};
     };
     // A parameter edit, undoable; `extend` merges it into the previous edit of the same key
     // (a slider being dragged).
@@ -250,11 +423,23 @@ int runApp(const SceneSpec& spec, const AppOptions& o) {
       if (e.frame != frames) continue;
       const auto& w = e.words;
       if (w[0] == "click") clickAt(std::stod(w[1]), std::stod(w[2]));
-      else if (w[0] == "place") placing = w[1] == "on", brushing = brushing && !placing;
-      else if (w[0] == "brush") brushing = w[1] == "on", placing = placing && !brushing;
+      else if (w[0] == "drag") {
+        release();
+        scripted = ScriptedDrag{frames, std::stod(w[1]), std::stod(w[2]), std::stod(w[3]),
+                                std::stod(w[4])};
+      } else if (w[0] == "place")
+        toggle(Tool::kSource, w[1] == "on");
+      else if (w[0] == "sink")
+        toggle(Tool::kSink, w[1] == "on");
+      else if (w[0] == "brush")
+        toggle(Tool::kBrush, w[1] == "on");
       else if (w[0] == "set") setParameter(w[1], w[2]);
+      else if (w[0] == "restore")
+        restoreSnapshot(std::stoi(w[1]));
       else if (w[0] == "press") {
         if (w[1] == "undo") undo();
+        else if (w[1] == "snapshot")
+          worker.post(cmd::TakeSnapshot{});
         else if (w[1] == "redo") redo();
         else if (w[1] == "play") worker.post(cmd::Resume{});
         else if (w[1] == "pause") worker.post(cmd::Pause{});
@@ -262,12 +447,48 @@ int runApp(const SceneSpec& spec, const AppOptions& o) {
         else if (w[1] == "reset") worker.post(cmd::Reset{});
       } else if (w[0] == "screenshot") renderer.writePng(w[1]);
     }
+    if (scripted) {
+      const long k = frames - scripted->start;
+      if (k == 0 && !pressAt(scripted->x0, scripted->y0)) {
+        log.push_back("no source under (" + number(scripted->x0) + ", " + number(scripted->y0) +
+                      ") to drag");
+        scripted.reset();
+      } else if (k > 0) {
+        const double t = std::min(1.0, double(k) / kDragSteps);
+        dragTo(scripted->x0 + t * (scripted->x1 - scripted->x0),
+               scripted->y0 + t * (scripted->y1 - scripted->y0));
+        if (k >= kDragSteps) release(), scripted.reset();
+      }
+    }
 
     double mx = 0, my = 0;
     glfwGetCursorPos(window, &mx, &my);
-    if (!io.WantCaptureMouse) {
+    int hovered = -1;
+    if (cancelled && glfwGetMouseButton(window, GLFW_MOUSE_BUTTON_LEFT) != GLFW_PRESS)
+      cancelled = false;
+    if (scripted || cancelled) {
+      // A scripted drag holds the (virtual) mouse; after a cancelled drag it rests till released.
+    } else if (drag.index >= 0) {
+      // A drag owns the mouse until the button is up, over a panel or not; Escape cancels it.
+      if (ImGui::IsKeyPressed(ImGuiKey_Escape)) {
+        if (drag.moved && !undoStack.empty() &&
+            undoStack.back().key == "move source " + std::to_string(drag.index)) {
+          undo();
+          redoStack.pop_back();  // a cancelled drag is not there to redo
+        }
+        drag = SourceDrag{};
+        cancelled = true;
+      } else if (glfwGetMouseButton(window, GLFW_MOUSE_BUTTON_LEFT) == GLFW_PRESS) {
+        if (mx != lastX || my != lastY) dragTo(mx, my);
+      } else {
+        release();
+      }
+    } else if (!io.WantCaptureMouse) {
       const float dx = float(mx - lastX), dy = float(my - lastY);
-      if ((placing || brushing) && ImGui::IsMouseClicked(ImGuiMouseButton_Left)) {
+      hovered = sourceUnder(mx, my);
+      if (ImGui::IsMouseClicked(ImGuiMouseButton_Left) && pressAt(mx, my)) {
+        // grabbed a source's marker
+      } else if (tool != Tool::kOrbit && ImGui::IsMouseClicked(ImGuiMouseButton_Left)) {
         clickAt(mx, my);
       } else if (glfwGetMouseButton(window, GLFW_MOUSE_BUTTON_LEFT) == GLFW_PRESS) {
         orbit.yaw -= 0.005f * dx;
@@ -296,6 +517,54 @@ int runApp(const SceneSpec& spec, const AppOptions& o) {
     ImGui_ImplGlfw_NewFrame();
     ImGui::NewFrame();
 
+    // Markers over the picture, under the panels. Sources: a stem from the terrain to the centre
+    // (highlighted when the mouse is on it or it is being dragged). Sinks: the outline of their
+    // box on the terrain.
+    {
+      ImDrawList* draw = ImGui::GetBackgroundDrawList();
+      for (size_t i = 0; i < snap.sources.size(); ++i) {
+        const bool held = drag.index == int(i);
+        ImVec2 foot, top;
+        if (!sourceStem(held && drag.moved ? drag.last : snap.sources[i].center, foot, top))
+          continue;
+        const ImU32 colour =
+            held || hovered == int(i) ? IM_COL32(255, 230, 60, 255) : IM_COL32(255, 140, 30, 230);
+        draw->AddLine(foot, top, colour, 2.0f);
+        draw->AddCircle(foot, 4.0f, colour, 12, 2.0f);
+        draw->AddCircleFilled(top, 6.0f, colour, 12);
+        draw->AddText({top.x + 8, top.y - 8}, colour, ("source " + std::to_string(i)).c_str());
+      }
+      const double xMax = frame.x0 + (frame.nx - 1) * frame.dx,
+                   zMax = frame.z0 + (frame.nz - 1) * frame.dz;
+      for (size_t i = 0; i < snap.sinks.size(); ++i) {
+        const Sink& k = snap.sinks[i];
+        const double x0 = std::max(k.lo.x(), frame.x0), x1 = std::min(k.hi.x(), xMax);
+        const double z0 = std::max(k.lo.z(), frame.z0), z1 = std::min(k.hi.z(), zMax);
+        if (!(x0 < x1 && z0 < z1)) continue;
+        // Around the footprint, on the terrain, 16 points a side.
+        std::vector<ImVec2> outline;
+        const double corner[5][2] = {{x0, z0}, {x1, z0}, {x1, z1}, {x0, z1}, {x0, z0}};
+        bool seen = true;
+        for (int side = 0; side < 4 && seen; ++side)
+          for (int t = 0; t < 16 && seen; ++t) {
+            const double u = t / 16.0;
+            const double x = (1 - u) * corner[side][0] + u * corner[side + 1][0];
+            const double z = (1 - u) * corner[side][1] + u * corner[side + 1][1];
+            float g = 0;
+            ImVec2 q;
+            seen =
+                terrainHeight(frame, x, z, g) &&
+                toWindow(orbit.camera(), aspect,
+                         Eigen::Vector3f(float(x), g + 0.5f * frame.spacing, float(z)), ww, wh, q);
+            outline.push_back(q);
+          }
+        if (!seen) continue;
+        const ImU32 colour = IM_COL32(200, 80, 255, 230);
+        draw->AddPolyline(outline.data(), int(outline.size()), colour, ImDrawFlags_Closed, 2.0f);
+        draw->AddText(outline[0], colour, ("sink " + std::to_string(i)).c_str());
+      }
+    }
+
     ImGui::SetNextWindowPos({10, 10}, ImGuiCond_FirstUseEver);
     ImGui::SetNextWindowSize({340, 0}, ImGuiCond_FirstUseEver);
     ImGui::Begin("Run");
@@ -317,6 +586,25 @@ int runApp(const SceneSpec& spec, const AppOptions& o) {
     if (ImGui::SliderInt("steps per frame", &stepsPerFrame, 1, 50)) worker.post(cmd::SetStepsPerFrame{stepsPerFrame});
     ImGui::Text("t = %.3f s   step %ld   %zu particles", frame.time, frame.step, frame.particles());
     ImGui::Text("%.1f steps/s", snap.stepsPerSecond);
+    // Whole world states to go back to (the worker keeps them; see worker.h).
+    if (ImGui::CollapsingHeader("Snapshots", ImGuiTreeNodeFlags_DefaultOpen)) {
+      if (ImGui::Button("take snapshot")) worker.post(cmd::TakeSnapshot{});
+      if (ImGui::IsItemHovered())
+        ImGui::SetTooltip(
+            "keeps the terrain, the water, its sediment and the sources as they are now");
+      for (const SnapshotInfo& k : snap.snapshots) {
+        ImGui::PushID(k.id);
+        ImGui::Text("#%d  t = %.3f s  step %ld  %zu particles", k.id, k.time, k.step, k.particles);
+        ImGui::SameLine();
+        if (ImGui::SmallButton("restore")) restoreSnapshot(k.id);
+        if (ImGui::IsItemHovered())
+          ImGui::SetTooltip(
+              "back to this terrain, water and sources, with the parameters as they are now");
+        ImGui::SameLine();
+        if (ImGui::SmallButton("delete")) worker.post(cmd::DeleteSnapshot{k.id});
+        ImGui::PopID();
+      }
+    }
     ImGui::End();
 
     ImGui::SetNextWindowPos({10, 140}, ImGuiCond_FirstUseEver);
@@ -374,15 +662,23 @@ int runApp(const SceneSpec& spec, const AppOptions& o) {
     ImGui::SameLine();
     ImGui::RadioButton("speed", &particles, 2);
     settings.particles = RenderSettings::Particles(particles);
-    ImGui::TextDisabled("left drag: orbit, right drag: pan, wheel: zoom");
+    ImGui::TextDisabled(
+        "left drag: orbit, right drag: pan, wheel: zoom;\ndrag a source's marker to move it");
     ImGui::End();
 
     ImGui::SetNextWindowPos({float(fbw) - 330, 200}, ImGuiCond_FirstUseEver);
     ImGui::SetNextWindowSize({320, 0}, ImGuiCond_FirstUseEver);
     ImGui::Begin("Water");
-    if (ImGui::Checkbox("click the terrain to place a source", &placing) && placing) brushing = false;
-    if (ImGui::Checkbox("brush: click to paint water", &brushing) && brushing) placing = false;
+    for (auto [t, label] : {std::pair{Tool::kSource, "click the terrain to place a source"},
+                            std::pair{Tool::kSink, "click the terrain to place a sink"},
+                            std::pair{Tool::kBrush, "brush: click to paint water"}}) {
+      bool on = tool == t;
+      if (ImGui::Checkbox(label, &on)) toggle(t, on);
+    }
+    ImGui::TextDisabled("drag a source's marker to move it (one undo step)");
     ImGui::SliderFloat("brush radius [m]", &brushRadius, frame.spacing, 30 * frame.spacing, "%.3g");
+    ImGui::SliderFloat("new sink half-size [m]", &sinkRadius, 0.5f * frame.spacing,
+                       30 * frame.spacing, "%.3g", ImGuiSliderFlags_AlwaysClamp);
     {
       SceneSpec edited = worker.spec();
       bool rain = edited.effects.rain;
@@ -414,6 +710,35 @@ int runApp(const SceneSpec& spec, const AppOptions& o) {
       }
       if (ImGui::Button("delete"))
         perform({{cmd::RemoveSource{i}}, {cmd::AddSource{snap.sources[i]}}, "delete source " + std::to_string(i), ""}, false);
+      ImGui::PopID();
+    }
+    ImGui::Separator();
+    ImGui::Text("%zu sinks; %ld particles removed by them", snap.sinks.size(), snap.removedBySinks);
+    for (size_t i = 0; i < snap.sinks.size(); ++i) {
+      ImGui::PushID("sink");
+      ImGui::PushID(int(i));
+      const Sink& k = snap.sinks[i];
+      const Eigen::Vector3d centre = 0.5 * (k.lo + k.hi), half = 0.5 * (k.hi - k.lo);
+      ImGui::Text("sink %zu at (%.2f, %.2f, %.2f)", i, centre.x(), centre.y(), centre.z());
+      float h[3] = {float(half.x()), float(half.y()), float(half.z())};
+      if (ImGui::DragFloat3("half-size [m]", h, 0.002f, 0.5f * frame.spacing, 10.0f, "%.3g",
+                            ImGuiSliderFlags_AlwaysClamp) &&
+          std::isfinite(h[0] + h[1] + h[2]) && std::min({h[0], h[1], h[2]}) > 0) {
+        Sink resized;
+        const Eigen::Vector3d r(h[0], h[1], h[2]);
+        resized.lo = centre - r, resized.hi = centre + r;
+        perform({{cmd::UpdateSink{i, resized}},
+                 {cmd::UpdateSink{i, k}},
+                 "resize sink " + std::to_string(i),
+                 "sink" + std::to_string(i)},
+                ImGui::IsItemActive() && !ImGui::IsItemActivated());
+      }
+      if (ImGui::IsItemHovered())
+        ImGui::SetTooltip("half the box's size along x, y and z, about its centre");
+      if (ImGui::Button("delete"))
+        perform({{cmd::RemoveSink{i}}, {cmd::AddSink{k}}, "delete sink " + std::to_string(i), ""},
+                false);
+      ImGui::PopID();
       ImGui::PopID();
     }
     ImGui::End();
@@ -493,13 +818,25 @@ int runApp(const SceneSpec& spec, const AppOptions& o) {
   worker.poll();
   const Snapshot& last = worker.latest();
   if (o.stats) *o.stats = {frames, last.frame.step - std::max(firstStep, 0L), glfwGetTime() - opened};
-  long near = 0;
+  // Near it, and close around its disk (there only what it emits, not water flowing past below).
+  long near = 0, atDisk = 0;
   if (lastSource.allFinite())
-    for (const auto& x : last.frame.position) near += (x.cast<double>() - lastSource).norm() < 0.25;
+    for (const auto& x : last.frame.position) {
+      const double d = (x.cast<double>() - lastSource).norm();
+      near += d < 0.25;
+      atDisk += d < lastRadius + last.frame.spacing;
+    }
+  std::ostringstream where;
+  for (const Source& s : last.sources)
+    where << (where.tellp() > 0 ? " " : "") << "(" << number(s.center.x()) << ", "
+          << number(s.center.y()) << ", " << number(s.center.z()) << ")";
   std::cout << "closed after " << frames << " frames; simulated " << last.frame.time << " s, "
-            << last.frame.step << " steps; " << last.sources.size() << " sources; erosion.k_eps "
+            << last.frame.step << " steps; " << last.sources.size() << " sources at ["
+            << where.str() << "]; " << last.sinks.size() << " sinks, removed "
+            << last.removedBySinks << "; " << last.snapshots.size() << " snapshots; erosion.k_eps "
             << last.params.k_eps << "; emitted " << last.emitted << "; painted " << last.painted
-            << "; particles within 0.25 m of the last placed source " << near << "; GL errors: " << errors << "\n";
+            << "; particles within 0.25 m of the last placed or moved source " << near
+            << ", around its disk " << atDisk << "; GL errors: " << errors << "\n";
   for (const std::string& line : log) std::cout << "log: " << line << "\n";
   return errors == 0 ? 0 : 1;
 }

@@ -4,8 +4,10 @@
 #include "scene/output.h"
 #include "scene/scene_json.h"
 
+#include <algorithm>
 #include <chrono>
 #include <optional>
+#include <sstream>
 
 namespace scour {
 
@@ -44,7 +46,34 @@ void SimulationWorker::rebuild() {
     spec = spec_;
   }
   world_ = std::make_unique<World>(buildScene(spec).desc);
+  worldEffects_ = spec.effects;
   ++generation_;
+}
+
+void SimulationWorker::restore(int id) {
+  auto it =
+      std::find_if(kept_.begin(), kept_.end(), [&](const Kept& k) { return k.info.id == id; });
+  if (it == kept_.end())
+    throw std::invalid_argument("snapshot " + std::to_string(id) + " does not exist");
+  SceneSpec spec = it->spec;
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    spec.params = spec_.params;  // snapshots are dropped with their scene: Δs is the same
+  }
+  // Into a fresh World: if the state does not load, the running one is untouched.
+  auto next = std::make_unique<World>(buildScene(spec).desc);
+  std::istringstream in(it->state);
+  next->loadState(in);
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    spec_ = spec;
+  }
+  world_ = std::move(next);
+  worldEffects_ = spec.effects;
+  ++generation_;
+  error_.clear();
+  notice_ = "restored snapshot " + std::to_string(id) + " (t = " + std::to_string(it->info.time) +
+            " s, step " + std::to_string(it->info.step) + ")";
 }
 
 void SimulationWorker::run() {
@@ -133,6 +162,10 @@ void SimulationWorker::apply(SimCommand& c) {
       world_->addSink(k->sink);
       std::lock_guard<std::mutex> lock(mutex_);
       spec_.sinks.push_back(k->sink);
+    } else if (auto* us = std::get_if<cmd::UpdateSink>(&c)) {
+      world_->updateSink(us->index, us->sink);
+      std::lock_guard<std::mutex> lock(mutex_);
+      spec_.sinks.at(us->index) = us->sink;
     } else if (auto* k2 = std::get_if<cmd::RemoveSink>(&c)) {
       world_->removeSink(k2->index);
       std::lock_guard<std::mutex> lock(mutex_);
@@ -157,8 +190,11 @@ void SimulationWorker::apply(SimCommand& c) {
         spec_ = l->spec;
       }
       world_ = std::move(next);
+      worldEffects_ = l->spec.effects;
       ++generation_;
       error_.clear();
+      if (!kept_.empty()) notice_ = "a new scene: its snapshots start afresh";
+      kept_.clear();
     } else if (auto* fx = std::get_if<cmd::SetEffects>(&c)) {
       std::lock_guard<std::mutex> lock(mutex_);
       spec_.effects = fx->effects;
@@ -185,8 +221,35 @@ void SimulationWorker::apply(SimCommand& c) {
         spec_ = scene.spec;
       }
       world_ = std::move(next);
+      worldEffects_ = scene.spec.effects;
       ++generation_;
       notice_ = "resumed " + lc->path + " at step " + std::to_string(world_->steps());
+      kept_.clear();  // a checkpoint may be of another scene
+    } else if (std::holds_alternative<cmd::TakeSnapshot>(c)) {
+      if (kept_.size() >= kMaxSnapshots)
+        throw std::invalid_argument("at most " + std::to_string(kMaxSnapshots) +
+                                    " snapshots: delete one first");
+      Kept k;
+      k.spec = spec();
+      k.spec.effects = worldEffects_;
+      k.spec.sources = world_->sources();
+      k.spec.sinks = world_->sinks();
+      std::ostringstream out;
+      world_->saveState(out);
+      k.state = out.str();
+      k.info = {nextSnapshotId_++, world_->time(), world_->steps(), world_->fluid().size()};
+      notice_ = "took snapshot " + std::to_string(k.info.id) +
+                " at t = " + std::to_string(k.info.time) + " s";
+      kept_.push_back(std::move(k));
+    } else if (auto* rs = std::get_if<cmd::RestoreSnapshot>(&c)) {
+      restore(rs->id);
+    } else if (auto* ds = std::get_if<cmd::DeleteSnapshot>(&c)) {
+      auto it = std::find_if(kept_.begin(), kept_.end(),
+                             [&](const Kept& k) { return k.info.id == ds->id; });
+      if (it == kept_.end())
+        throw std::invalid_argument("snapshot " + std::to_string(ds->id) + " does not exist");
+      kept_.erase(it);
+      notice_ = "deleted snapshot " + std::to_string(ds->id);
     } else if (auto* f = std::get_if<cmd::SetStepsPerFrame>(&c)) {
       if (f->steps < 1 || f->steps > 1000) throw std::invalid_argument("steps per frame must lie in [1, 1000]");
       stepsPerFrame_ = f->steps;
@@ -211,6 +274,9 @@ void SimulationWorker::publish(double stepsPerSecond) {
   s.notice = notice_;
   s.emitted = world_->emitted();
   s.painted = world_->painted();
+  s.removedBySinks = world_->removedBySinks();
+  s.snapshots.clear();
+  for (const Kept& k : kept_) s.snapshots.push_back(k.info);
   frames_.publish();
 }
 

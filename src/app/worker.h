@@ -3,6 +3,12 @@
 // step publishes a Frame with the run's figures through a triple buffer: the renderer draws the
 // newest complete one, never waits for a step and never sees a half-written one. Nothing else
 // touches the World: the UI posts commands to a queue that the worker drains between steps.
+//
+// Snapshots to go back to are whole world states (World::saveState) kept by the worker with the
+// scene they were taken in: a restore builds a fresh World from that scene and loads the state
+// into it, so the terrain, the water, the suspended sediment and what the sinks removed come back
+// together and the soil budget stays closed. A restore that fails leaves the running World as it
+// was. The UI sees only their list (id, time, step) in each Snapshot.
 #include <condition_variable>
 #include <deque>
 #include <memory>
@@ -25,6 +31,7 @@ struct AddSource { Source source; };
 struct UpdateSource { size_t index; Source source; };
 struct RemoveSource { size_t index; };
 struct AddSink { Sink sink; };
+struct UpdateSink { size_t index; Sink sink; };
 struct RemoveSink { size_t index; };
 struct PaintWater { Eigen::Vector3d centre; double radius; };
 struct Pause {};
@@ -41,12 +48,28 @@ struct Save {
   std::string path;
 };
 struct LoadCheckpoint { std::string path; };
+/// Keeps the world state now (terrain, water, sediment, sources, counters) to go back to.
+struct TakeSnapshot {};
+/// Back to a kept state, with the parameters as they are now (so the same terrain can be run
+/// again with other ones); its sources and sinks come back with it.
+struct RestoreSnapshot { int id; };
+struct DeleteSnapshot { int id; };
 }  // namespace cmd
 
-using SimCommand = std::variant<cmd::SetParam, cmd::AddSource, cmd::UpdateSource, cmd::RemoveSource,
-                             cmd::AddSink, cmd::RemoveSink, cmd::PaintWater, cmd::Pause, cmd::Resume,
-                             cmd::StepOnce, cmd::Reset, cmd::Load, cmd::SetStepsPerFrame,
-                             cmd::SetEffects, cmd::Save, cmd::LoadCheckpoint>;
+using SimCommand =
+    std::variant<cmd::SetParam, cmd::AddSource, cmd::UpdateSource, cmd::RemoveSource, cmd::AddSink,
+                 cmd::UpdateSink, cmd::RemoveSink, cmd::PaintWater, cmd::Pause, cmd::Resume,
+                 cmd::StepOnce, cmd::Reset, cmd::Load, cmd::SetStepsPerFrame, cmd::SetEffects,
+                 cmd::Save, cmd::LoadCheckpoint, cmd::TakeSnapshot, cmd::RestoreSnapshot,
+                 cmd::DeleteSnapshot>;
+
+/// A kept world state as the UI lists it.
+struct SnapshotInfo {
+  int id = 0;       ///< what RestoreSnapshot and DeleteSnapshot name
+  double time = 0;  ///< simulated time when taken [s]
+  long step = 0;
+  size_t particles = 0;
+};
 
 /// What the worker publishes: the frame and the run's figures at that step.
 struct Snapshot {
@@ -62,6 +85,8 @@ struct Snapshot {
   std::string error;          ///< the last command or step that failed (shown in the log)
   std::string notice;         ///< the last file written or read
   long emitted = 0, painted = 0;  ///< particles made by sources, by the brush
+  long removedBySinks = 0;        ///< particles the sinks took out since the start
+  std::vector<SnapshotInfo> snapshots;  ///< kept states, oldest first
 };
 
 class SimulationWorker {
@@ -85,6 +110,17 @@ class SimulationWorker {
   void apply(SimCommand& c);
   void publish(double stepsPerSecond);
   void rebuild();
+  void restore(int id);
+
+  /// A kept world state and the scene it belongs to (the scene's effects are those the World
+  /// was built with, its sources and sinks those of the World when taken).
+  struct Kept {
+    SnapshotInfo info;
+    SceneSpec spec;
+    std::string state;
+  };
+  /// At most this many are kept (a state is a few MB at the default scales).
+  static constexpr size_t kMaxSnapshots = 32;
 
   mutable std::mutex mutex_;  // guards queue_, stop_ and spec_
   std::condition_variable wake_;
@@ -98,6 +134,9 @@ class SimulationWorker {
   long stepsToDo_ = 0;
   long generation_ = 0;
   std::string error_, notice_;
+  Effects worldEffects_;  ///< what world_ was built with (SetEffects waits for a reset)
+  std::vector<Kept> kept_;
+  int nextSnapshotId_ = 1;
   TripleBuffer<Snapshot> frames_;
   std::thread thread_;
 };

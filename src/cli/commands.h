@@ -22,10 +22,14 @@ using Command = std::function<int()>;
 Command addRunCommand(CLI::App& app);
 Command addBenchCommand(CLI::App& app);
 Command addRenderCommand(CLI::App& app);
+Command addStressCommand(CLI::App& app);
+Command addStudyCommand(CLI::App& app);
 
 /// Shared by run and bench: builds the scene and applies `--set key=value` overrides.
 Scene loadScene(const std::string& name, double scale, long particles,
                 const std::vector<std::string>& sets);
+/// Applies `--set key=value` overrides; throws InputError naming the key for a bad one.
+void applySets(SimParams& params, const std::vector<std::string>& sets);
 /// A CLI11 validator: a finite number > 0.
 extern const CLI::Validator kPositive;
 void setThreads(int threads);

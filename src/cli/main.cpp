@@ -1,4 +1,5 @@
-// scour: the one binary. No subcommand: the window; subcommands: run, bench, render, presets.
+// scour: the one binary. No subcommand: the window; subcommands: run, bench, render, stress,
+// study, presets.
 #include <cstdio>
 #include <iostream>
 #include <tuple>
@@ -28,6 +29,8 @@ int main(int argc, char** argv) {
   Command run = addRunCommand(app);
   Command bench = addBenchCommand(app);
   Command render = addRenderCommand(app);
+  Command stress = addStressCommand(app);
+  Command study = addStudyCommand(app);
   CLI::App* presets = app.add_subcommand("presets", "List the built-in scenes, one per line");
   try {
     app.parse(argc, argv);
@@ -47,6 +50,8 @@ int main(int argc, char** argv) {
     if (app.got_subcommand("run")) return run();
     if (app.got_subcommand("bench")) return bench();
     if (app.got_subcommand("render")) return render();
+    if (app.got_subcommand("stress")) return stress();
+    if (app.got_subcommand("study")) return study();
     // The window.
     std::tie(window.width, window.height) = parseSize(windowSize, 64);
     if (!window.screenshot.empty()) requirePng("--screenshot", window.screenshot);

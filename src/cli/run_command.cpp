@@ -36,6 +36,16 @@ void setThreads(int threads) {
   if (threads > 0) omp_set_num_threads(threads);
 }
 
+void applySets(SimParams& params, const std::vector<std::string>& sets) {
+  for (const std::string& kv : sets) {
+    auto eq = kv.find('=');
+    if (eq == std::string::npos)
+      throw InputError("--set: expected key=value, found '" + kv + "'");
+    std::string err = setParam(params, kv.substr(0, eq), kv.substr(eq + 1));
+    if (!err.empty()) throw InputError("--set: " + err);
+  }
+}
+
 Scene loadScene(const std::string& name, double scale, long particles,
                 const std::vector<std::string>& sets) {
   SceneSpec spec;
@@ -54,13 +64,7 @@ Scene loadScene(const std::string& name, double scale, long particles,
     throw InputError(e.what());
   }
   // Overrides edit the spec before it is built, so a new Δs refills the water at that spacing.
-  for (const std::string& kv : sets) {
-    auto eq = kv.find('=');
-    if (eq == std::string::npos)
-      throw InputError("--set: expected key=value, found '" + kv + "'");
-    std::string err = setParam(spec.params, kv.substr(0, eq), kv.substr(eq + 1));
-    if (!err.empty()) throw InputError("--set: " + err);
-  }
+  applySets(spec.params, sets);
   try {
     return buildScene(spec);
   } catch (const TerrainError& e) {

@@ -11,6 +11,11 @@
 
 namespace scour {
 
+/// Distance from p to the nearest point of the triangle (a, b, c) (Ericson's closest-point
+/// regions) [m].
+double pointTriangleDistance(const Eigen::Vector3d& p, const Eigen::Vector3d& a,
+                             const Eigen::Vector3d& b, const Eigen::Vector3d& c);
+
 struct SurfacePoint {
   double height;
   Eigen::Vector3d normal;  ///< unit, pointing up out of the terrain
@@ -45,6 +50,11 @@ class Heightfield {
   SurfacePoint surface(double x, double z) const;
   double heightAt(double x, double z) const { return surface(x, z).height; }
 
+  /// Distance from p to the nearest point of a triangle [m].
+  double distanceToTriangle(int tri, const Eigen::Vector3d& p) const {
+    const auto [a, b, c] = triangleCorners(tri);
+    return pointTriangleDistance(p, a, b, c);
+  }
   /// The three corners (x, h, z) of a triangle.
   std::array<Eigen::Vector3d, 3> triangleCorners(int tri) const;
   /// Vertex indices (i, k) of a triangle's corners, in the order of triangleCorners.

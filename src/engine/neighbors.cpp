@@ -6,6 +6,8 @@
 #include <cmath>
 #include <limits>
 
+#include <nanoflann.hpp>
+
 #include "engine/fluid.h"
 
 namespace scour {
@@ -116,11 +118,8 @@ std::vector<uint32_t> Grid::zOrder(const std::vector<Vec3f>& x) const {
   return order;
 }
 
-void NeighborLists::build(const Grid& grid, const std::vector<Vec3f>& x,
-                          const std::vector<Vec3f>& y, const std::vector<uint32_t>& start,
-                          const std::vector<uint32_t>& sorted, float r, bool self) {
-  const size_t n = x.size();
-  const float r2 = r * r;
+template <class Gather>
+void NeighborLists::fill(size_t n, Gather&& gather) {
   first_.resize(n);
   count_.resize(n);
 #pragma omp parallel
@@ -133,12 +132,8 @@ void NeighborLists::build(const Grid& grid, const std::vector<Vec3f>& x,
     chunk.clear();
     const size_t b = blockBegin(n, threads, t), e = blockBegin(n, threads, t + 1);
     for (size_t i = b; i < e; ++i) {
-      const Vec3f xi = x[i];
       const size_t before = chunk.size();
-      grid.forEachCandidate(xi, start, sorted, [&](uint32_t j) {
-        if (self && j == i) return;
-        if ((xi - y[j]).squaredNorm() < r2) chunk.push_back(j);
-      });
+      gather(i, chunk);
       count_[i] = uint32_t(chunk.size() - before);
     }
     const uint32_t* p = chunk.data();
@@ -147,6 +142,99 @@ void NeighborLists::build(const Grid& grid, const std::vector<Vec3f>& x,
       p += count_[i];
     }
   }
+}
+
+void NeighborLists::build(const Grid& grid, const std::vector<Vec3f>& x,
+                          const std::vector<Vec3f>& y, const std::vector<uint32_t>& start,
+                          const std::vector<uint32_t>& sorted, float r, bool self) {
+  const float r2 = r * r;
+  fill(x.size(), [&](size_t i, std::vector<uint32_t>& chunk) {
+    const Vec3f xi = x[i];
+    grid.forEachCandidate(xi, start, sorted, [&](uint32_t j) {
+      if (self && j == i) return;
+      if ((xi - y[j]).squaredNorm() < r2) chunk.push_back(j);
+    });
+  });
+}
+
+void NeighborLists::build(const KdTree& tree, const std::vector<Vec3f>& x, float r, bool self) {
+  static const std::vector<Vec3f> kNone;
+  const std::vector<Vec3f>& y = tree.points() ? *tree.points() : kNone;
+  const float r2 = r * r;
+  fill(x.size(), [&](size_t i, std::vector<uint32_t>& chunk) {
+    if (y.empty()) return;
+    const Vec3f xi = x[i];
+    const size_t before = chunk.size();
+    tree.candidates(xi, r, chunk);
+    // The grid's own test, so both searches agree on the pairs at |r_ij| ≈ h to the bit.
+    auto keep = std::remove_if(chunk.begin() + long(before), chunk.end(), [&](uint32_t j) {
+      return (self && j == i) || !((xi - y[j]).squaredNorm() < r2);
+    });
+    chunk.erase(keep, chunk.end());
+    std::sort(chunk.begin() + long(before), chunk.end());
+  });
+}
+
+// nanoflann reads the points through this adaptor; it holds a pointer, not a copy.
+struct KdTree::Impl {
+  struct Cloud {
+    const std::vector<Vec3f>* pts = nullptr;
+    size_t kdtree_get_point_count() const { return pts ? pts->size() : 0; }
+    float kdtree_get_pt(uint32_t i, size_t d) const { return (*pts)[i][Eigen::Index(d)]; }
+    template <class Box>
+    bool kdtree_get_bbox(Box&) const {
+      return false;
+    }
+  };
+  using Metric = nanoflann::L2_Simple_Adaptor<float, Cloud, float, uint32_t>;
+  using Index = nanoflann::KDTreeSingleIndexAdaptor<Metric, Cloud, 3, uint32_t>;
+
+  // Collects every index the search offers within the (widened) squared radius.
+  struct Collector {
+    float radius2;
+    std::vector<uint32_t>& out;
+    void init() {}
+    size_t size() const { return out.size(); }
+    bool full() const { return true; }
+    bool addPoint(float d2, uint32_t j) {
+      if (d2 <= radius2) out.push_back(j);
+      return true;
+    }
+    float worstDist() const { return radius2; }
+  };
+
+  Cloud cloud;
+  std::unique_ptr<Index> index;
+};
+
+KdTree::KdTree() : impl_(std::make_unique<Impl>()) {}
+KdTree::~KdTree() = default;
+KdTree::KdTree(KdTree&&) noexcept = default;
+KdTree& KdTree::operator=(KdTree&&) noexcept = default;
+
+void KdTree::build(const std::vector<Vec3f>& y) {
+  impl_->cloud.pts = &y;
+  // Leaves of ~16 points: about one particle's neighborhood at h = 2Δs per handful of leaves.
+  if (!impl_->index) {
+    impl_->index = std::make_unique<Impl::Index>(
+        3, impl_->cloud, nanoflann::KDTreeSingleIndexAdaptorParams(16));
+  } else {
+    impl_->index->buildIndex();
+  }
+}
+
+void KdTree::candidates(const Vec3f& p, float r, std::vector<uint32_t>& out) const {
+  if (!impl_->index || impl_->cloud.kdtree_get_point_count() == 0) return;
+  // Widened by 1e-4 relative: the tree's pruning rounds differently from the caller's exact test.
+  Impl::Collector c{r * r * 1.0002f, out};
+  const float q[3] = {p.x(), p.y(), p.z()};
+  impl_->index->findNeighbors(c, q, nanoflann::SearchParams(32, 0.0f, false));
+}
+
+const std::vector<Vec3f>* KdTree::points() const { return impl_->cloud.pts; }
+
+size_t KdTree::bytes() const {
+  return impl_->index ? impl_->index->usedMemory(*impl_->index) : 0;
 }
 
 size_t NeighborLists::totalPairs() const {

@@ -7,12 +7,19 @@
 // each cell in ascending particle order, so the lists are the same at any thread count. The lists
 // are stored in one chunk per thread (no copy); a particle's list is a pointer and a count.
 //
+// kd-tree (SimParams::neighbor_search = 1, the paper's choice): a nanoflann tree over the fluid
+// (or the boundary) particles, rebuilt every step. Each radius query is widened slightly and then
+// filtered with the grid's own test, |x_i − y_j|² < h² in float, so both searches find the same
+// neighbor sets; a kd-tree list is sorted by ascending index (deterministic at any thread count,
+// but a different order from the grid's cell order, so sums over it round differently).
+//
 // Z-order: zOrder() returns the permutation that sorts particles along the Morton curve of their
 // cell coordinates; World applies it every few steps so that neighbors are near in memory.
 
 #include <Eigen/Core>
 #include <algorithm>
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 namespace scour {
@@ -76,6 +83,29 @@ class Grid {
   std::vector<uint32_t> start_, sorted_;
 };
 
+/// A kd-tree over a point set (nanoflann, kept out of this header). It refers to the vector it
+/// was built on, which must outlive it and stay unchanged while it is queried.
+class KdTree {
+ public:
+  KdTree();
+  ~KdTree();
+  KdTree(KdTree&&) noexcept;
+  KdTree& operator=(KdTree&&) noexcept;
+
+  /// Indexes the points y (rebuilds from scratch).
+  void build(const std::vector<Vec3f>& y);
+  /// Appends to `out` the indexed points j with |p − y_j| ≤ r (a superset of those strictly
+  /// within r: the caller filters), in no particular order. Thread-safe.
+  void candidates(const Vec3f& p, float r, std::vector<uint32_t>& out) const;
+  /// The points last passed to build() (nullptr before the first).
+  const std::vector<Vec3f>* points() const;
+  size_t bytes() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
 /// Per-particle neighbor lists, stored in per-thread chunks.
 class NeighborLists {
  public:
@@ -84,6 +114,8 @@ class NeighborLists {
   void build(const Grid& grid, const std::vector<Vec3f>& x, const std::vector<Vec3f>& y,
              const std::vector<uint32_t>& start, const std::vector<uint32_t>& sorted, float r,
              bool self);
+  /// The same sets from a kd-tree over y (= tree.points()), each list in ascending index.
+  void build(const KdTree& tree, const std::vector<Vec3f>& x, float r, bool self);
 
   size_t size() const { return count_.size(); }
   uint32_t count(size_t i) const { return count_[i]; }
@@ -92,6 +124,11 @@ class NeighborLists {
   size_t bytes() const;
 
  private:
+  /// Runs gather(i, chunk) for the particles of each thread's block, in ascending i; gather
+  /// appends i's neighbors to the chunk.
+  template <class Gather>
+  void fill(size_t n, Gather&& gather);
+
   std::vector<std::vector<uint32_t>> chunks_;
   std::vector<const uint32_t*> first_;
   std::vector<uint32_t> count_;

@@ -13,6 +13,9 @@ namespace {
 
 const char* const kEosChoices[] = {"tait", "ideal_gas", nullptr};
 const char* const kDensityChoices[] = {"continuity", "summation", nullptr};
+const char* const kNeighborChoices[] = {"grid", "kd_tree", nullptr};
+const char* const kAdvectionChoices[] = {"donor_acceptor", "naive_gradient", nullptr};
+const char* const kDiffusionFormChoices[] = {"consistent", "printed", nullptr};
 
 ParamInfo real(const char* key, const char* label, const char* symbol, const char* unit,
                double lo, double hi, const char* help, double SimParams::*m) {
@@ -59,10 +62,16 @@ std::vector<ParamInfo> makeTable() {
            "Gravitational acceleration, pointing along −y.", &P::gravity),
       real("time.max_dt", "Maximum time step", "Δt", "s", 1e-7, 0.01,
            "Upper bound on the adaptive time step (paper: 2 ms).", &P::max_dt),
-      real("time.cfl", "CFL factor", "λ", "-", 0.01, 1.0,
-           "Δt ≤ λ·h / max(c_s, |v|max).", &P::cfl),
-      real("time.force_cfl", "Force factor", "λ_f", "-", 0.01, 1.0,
-           "Δt ≤ λ_f·√(h / |a|max).", &P::force_cfl),
+      real("time.cfl", "CFL factor", "λ", "-", 0.01, 0.4,
+           "Δt ≤ λ·h / max(c_s, |v|max). 0.4 is the stability limit (`scour stress`, cfl-limit).",
+           &P::cfl),
+      real("time.force_cfl", "Force factor", "λ_f", "-", 0.01, 0.25,
+           "Δt ≤ λ_f·√(h / |a|max). 0.25 is the stability limit (`scour stress`, cfl-limit).",
+           &P::force_cfl),
+      real("time.density_cfl", "Density factor", "λ_ρ", "-", 0.001, 0.2,
+           "Δt ≤ λ_ρ / max |dρ/dt|/ρ: the largest relative density change in a step. Keeps "
+           "splashes that collide from a one-step pressure spike (`scour stress`).",
+           &P::density_cfl),
       real("time.fixed_dt", "Fixed time step", "Δt", "s", 0.0, 0.01,
            "If > 0, use this fixed step instead of the adaptive one.", &P::fixed_dt),
       real("boundary.penalty_stiffness", "Penalty stiffness", "K_S", "1/s²", 0.0, 1e12,
@@ -97,8 +106,20 @@ std::vector<ParamInfo> makeTable() {
       real("sediment.settling_viscosity", "Settling viscosity", "μ", "Pa·s", 1e-6, 1e3,
            "μ of eq. (17); the default gives v_s ≈ 0.1 m/s for 1 mm grains.",
            &P::settling_viscosity),
+      integer("sediment.advection", "Settling advection", "", "-", 0, 1,
+              "donor_acceptor: eq. (16) as pairwise volume fluxes (conservative); naive_gradient: "
+              "−v_s·∇C per particle with the symmetric SPH gradient (leaks; study baseline).",
+              &P::advection, kAdvectionChoices),
+      integer("sediment.diffusion_form", "Diffusion form", "", "-", 0, 1,
+              "consistent: Σ V 2D (C_i − C_j) F/|r| (model.md); printed: eq. (19) as printed, "
+              "Σ m/(ρ_i ρ_j) D (C_i − C_j) F.",
+              &P::diffusion_form, kDiffusionFormChoices),
       integer("engine.reorder_every", "Reorder interval", "", "steps", 1, 1e6,
               "Steps between Z-order reorders of the particle arrays.", &P::reorder_every),
+      integer("engine.neighbor_search", "Neighbor search", "", "-", 0, 1,
+              "grid: uniform cells of edge h; kd_tree: nanoflann kd-tree rebuilt every step (the "
+              "paper's). Same neighbor sets.",
+              &P::neighbor_search, kNeighborChoices),
       real("engine.max_penetration_over_ds", "Penetration limit", "", "Δs", 0.0, 100.0,
            "A particle deeper than this below the terrain stops the run.",
            &P::max_penetration_over_ds),

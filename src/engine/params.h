@@ -42,6 +42,9 @@ struct SimParams {
   double cfl = 0.4;
   /// Factor in the force criterion Δt = λ_f √(h / |a|max) [-].
   double force_cfl = 0.25;
+  /// λ_ρ in Δt ≤ λ_ρ / max |dρ/dt|/ρ over the last step: no particle's density may change by
+  /// more than about this fraction in a step (continuity density only) [-].
+  double density_cfl = 0.05;
   /// If > 0, Δt is fixed to this value (the paper's fixed-step policy) [s].
   double fixed_dt = 0.0;
 
@@ -74,6 +77,13 @@ struct SimParams {
   double c_max = 0.6;
   /// e, Richardson–Zaki exponent of f(C) = 1 − (C/C_max)^e [-].
   double rz_exponent = 4.65;
+  /// Settling advection: 0 = donor–acceptor volume flux (eq. 16 doubled, model.md; default),
+  /// 1 = naive −v_s·∇C with the symmetric-difference SPH gradient, per particle as a rate of C
+  /// (not conservative; kept as the accuracy study's baseline).
+  int advection = 0;
+  /// Diffusion: 0 = model.md's consistent form of eq. (19) (default), 1 = eq. (19) as printed,
+  /// Σ m/(ρ_i ρ_j) D (C_i − C_j) F (not dimensionally consistent; for the accuracy study).
+  int diffusion_form = 0;
   /// μ in eq. (17), "settling viscosity": Stokes' law with water's viscosity gives metres per
   /// second for 1 mm grains, out of its range; the default gives v_s ≈ 0.1 m/s [Pa·s].
   double settling_viscosity = 0.036;
@@ -81,6 +91,9 @@ struct SimParams {
   // --- bookkeeping ---
   /// Steps between reorders of the particle arrays along the Z-order curve [-].
   int reorder_every = 16;
+  /// Neighbor search: 0 = uniform grid (default), 1 = kd-tree rebuilt every step (nanoflann; the
+  /// paper's choice). Both find the same neighbor sets; the kd-tree lists are in ascending index.
+  int neighbor_search = 0;
   /// A particle deeper than this below the terrain stops the run [Δs].
   double max_penetration_over_ds = 0.5;
 

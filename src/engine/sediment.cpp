@@ -19,6 +19,9 @@ SedimentConstants::SedimentConstants(const SimParams& p)
       shear_k(p.shear_k),
       shear_n(p.shear_n),
       rho_s(p.sediment_density),
+      mass(p.particleMass()),
+      advection(p.advection),
+      diffusion_form(p.diffusion_form),
       min_distance(0.1 * p.support()),
       spline(p.support()) {
   hindranceTable.resize(4097);
@@ -51,10 +54,11 @@ struct PairGeometry {
 };
 
 struct PairFlux {
-  float kSettle, kDiffuse, invHm, fCoef;
-  PairFlux(const SedimentConstants& k, bool settle, bool diffuse)
+  float kSettle, kDiffuse, kPrinted, invHm, fCoef;
+  PairFlux(const SedimentConstants& k, bool settle, bool diffuse, bool printed)
       : kSettle(settle ? float(2.0 * k.volume * k.volume * k.vs0) : 0.0f),
         kDiffuse(diffuse ? float(2.0 * k.diffusion * k.volume * k.volume) : 0.0f),
+        kPrinted(printed ? float(k.volume * k.mass * k.diffusion) : 0.0f),
         invHm(float(1.0 / k.spline.hm)),
         fCoef(float(k.spline.sigma / k.spline.hm)) {}
   // |F(r)| of the cubic spline (support 2 h_M = h).
@@ -68,6 +72,11 @@ struct PairFlux {
   /// |F(r)| / r, 0 for coincident particles.
   float ratio(float r) const { return r > 0.0f ? absF(r) / r : 0.0f; }
   PairGeometry geometry(float absDy, float fr) const { return {kSettle * absDy * fr, kDiffuse * fr}; }
+  // Eq. (19) as printed, as a volume flux: V m/(ρ_i ρ_j) D |F(r)| (symmetric in i and j, so both
+  // sides of a pair compute the same bits).
+  float printedDiffusion(float r, float rhoI, float rhoJ) const {
+    return kPrinted * absF(r) / (rhoI * rhoJ);
+  }
   // Volume flux [m³/s] from donor d to acceptor a; `below` says a lies below d (dy > 0), fa is
   // the acceptor's hindrance f(C_a) (eq. 17: C taken at the acceptor).
   static double flux(const PairGeometry& g, float cd, float ca, float fa, bool below) {
@@ -101,7 +110,11 @@ void transferSediment(const SedimentConstants& k, const SedimentEffects& fx,
                       SedimentWorkspace& ws) {
   const size_t n = f.size();
   const double V = k.volume, room = k.c_max * V;
-  const PairFlux pair(k, fx.settling, fx.diffusion);
+  const bool naive = fx.settling && k.advection == 1;
+  const bool printed = fx.diffusion && k.diffusion_form == 1;
+  const PairFlux pair(k, fx.settling && !naive, fx.diffusion && !printed, printed);
+  // Naive advection: ds_i = V Δt v_s0 f(C_i) ∂C/∂y, ∂C/∂y = Σ_j V (C_j − C_i) F dy/r (F = −|F|).
+  const double naiveCoef = naive ? V * V * k.vs0 : 0.0;
   const bool deposit = fx.deposition && bnbrs.size() == n;
   std::vector<float>& conc = ws.conc;
   std::vector<float>& hind = ws.hind;
@@ -140,7 +153,7 @@ void transferSediment(const SedimentConstants& k, const SedimentEffects& fx,
       const size_t hi = blockBegin(n, size_t(threads), size_t(t) + 1);
       for (size_t i = lo; i < hi; ++i) {
         const float ci = conc[i];
-        double d = 0.0, out = 0.0, in = 0.0;
+        double d = 0.0, out = 0.0, in = 0.0, grad = 0.0;
         const uint32_t* js = nbrs.begin(i);
         float* fri = fr.data() + ws.pairOffset[i];
         for (uint32_t c = 0; c < nbrs.count(i); ++c) {
@@ -149,7 +162,10 @@ void transferSediment(const SedimentConstants& k, const SedimentEffects& fx,
           if (ci == 0.0f && cj == 0.0f) continue;
           const float dy = f.x[i].y() - f.x[j].y();
           if (!scaled) fri[c] = pair.ratio((f.x[i] - f.x[j]).norm());
-          const PairGeometry g = pair.geometry(std::abs(dy), fri[c]);
+          PairGeometry g = pair.geometry(std::abs(dy), fri[c]);
+          if (printed) g.diffuse = pair.printedDiffusion((f.x[i] - f.x[j]).norm(), f.rho[i], f.rho[j]);
+          // The symmetric-difference gradient Σ_j V (C_j − C_i) ∇W_ij, y component over −V.
+          if (naive) grad += double(cj - ci) * double(fri[c]) * double(dy);
           const double gain = PairFlux::flux(g, cj, ci, hind[i], dy < 0.0) * dt;
           const double loss = PairFlux::flux(g, ci, cj, hind[j], dy > 0.0) * dt;
           // Unscaled, the factors are being written by other threads: read none of them.
@@ -158,6 +174,8 @@ void transferSediment(const SedimentConstants& k, const SedimentEffects& fx,
           in += gain;
           out += loss;
         }
+        // −v_s·∇C as a rate of C_i (the study's naive baseline): not a pairwise flux.
+        if (naive) d -= naiveCoef * double(hind[i]) * grad * dt;
         if (deposit && ci > 0.0f) {
           forEachNeighbor(bnbrs, f.x, b.x, i, [&](uint32_t bj, const Vec3f& xib, float r) {
             const double v = depositFlux(k, f.sed[i] / V, double(xib.y()), double(r)) * dt;
@@ -179,6 +197,25 @@ void transferSediment(const SedimentConstants& k, const SedimentEffects& fx,
   exchange(false);
   if (limited) exchange(true);
   replay(deposits, acc);
+  ws.defects = {};
+  if (naive) {
+    // The naive rate leaks: count what the step made (suspended change + deposits) and what the
+    // clamp into [0, C_max] added, serially in particle order so the sums are thread-independent.
+    SedimentDefects& def = ws.defects;
+    def.c_min_raw = n ? (f.sed[0] + delta[0]) / V : 0.0;
+    def.c_max_raw = def.c_min_raw;
+    for (size_t i = 0; i < n; ++i) {
+      const double raw = f.sed[i] + delta[i], now = std::clamp(raw, 0.0, room);
+      def.c_min_raw = std::min(def.c_min_raw, raw / V);
+      def.c_max_raw = std::max(def.c_max_raw, raw / V);
+      def.clipped += now - raw;
+      def.created += now - f.sed[i];
+      f.sed[i] = now;
+    }
+    for (const auto& l : deposits)
+      for (const auto& tv : l) def.created += tv.second;
+    return;
+  }
 #pragma omp parallel for schedule(static)
   for (size_t i = 0; i < n; ++i) f.sed[i] = std::clamp(f.sed[i] + delta[i], 0.0, room);
 }

@@ -19,6 +19,10 @@
 //     each pair's mass L_b² ε Δt taken from the boundary particle into the fluid particle, capped
 //     so that C_j ≤ C_max.
 //  3. applyTerrainChange: per-triangle volumes (eq. 21) to vertex heights (eq. 22) with slippage.
+// Accuracy-study options (SimParams::advection, diffusion_form): the naive advection −v_s·∇C is a
+// per-particle rate of C, not a pairwise flux, so it makes or destroys sediment; C is clamped into
+// [0, C_max] after it and what it made is counted (SedimentDefects) so the soil budget still
+// closes. The printed diffusion of eq. (19) keeps the pairwise form with its own coefficient.
 // Fluid-side updates are parallel gathers; the per-triangle sums are accumulated serially in
 // particle order, so the result is the same at any thread count.
 
@@ -44,6 +48,9 @@ struct SedimentConstants {
   explicit SedimentConstants(const SimParams& p);
   double volume;      ///< V = m/ρ0 [m³]
   double c_max, rz, vs0, diffusion, k_eps, tau_c, shear_k, shear_n, rho_s;
+  double mass;          ///< m, fluid particle mass (the printed eq. 19) [kg]
+  int advection;        ///< SimParams::advection: 0 donor–acceptor, 1 naive gradient
+  int diffusion_form;   ///< SimParams::diffusion_form: 0 consistent, 1 as printed
   double min_distance;  ///< l is clamped below at this [m]
   CubicSpline spline;
   /// Richardson–Zaki f(C) = 1 − (C/C_max)^e, 0 for C ≥ C_max.
@@ -64,6 +71,15 @@ struct TerrainAccumulator {
   }
 };
 
+/// What a non-conservative form did to the sediment (only the naive advection makes these
+/// non-zero; the conservative forms leave them at 0).
+struct SedimentDefects {
+  double created = 0;    ///< net sediment volume made (+) or destroyed (−) [m³]
+  double clipped = 0;    ///< of which by clamping C into [0, C_max] (+ where C went below 0) [m³]
+  double c_min_raw = 0;  ///< lowest C before the clamp [-]
+  double c_max_raw = 0;  ///< highest C before the clamp [-]
+};
+
 /// Per-step scratch of transferSediment, kept between steps so its memory is reused.
 struct SedimentWorkspace {
   struct Scales {
@@ -73,6 +89,8 @@ struct SedimentWorkspace {
   std::vector<Scales> scale;
   std::vector<double> delta;
   std::vector<size_t> pairOffset;
+  /// The last call's defects (naive advection only; zero otherwise).
+  SedimentDefects defects;
 };
 
 /// Step 1 (fluid–fluid and fluid–boundary transfer) of the sediment work; adds deposits to acc.

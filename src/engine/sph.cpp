@@ -136,15 +136,16 @@ void computeDensity(const SphConstants& k, const NeighborLists& nbrs, const Heig
   }
 }
 
-void integrateDensity(const SphConstants& k, const NeighborLists& nbrs, const Heightfield& hf,
-                      const Domain& dom, const std::vector<Vec3f>& v, double dt, Fluid& f) {
+double integrateDensity(const SphConstants& k, const NeighborLists& nbrs, const Heightfield& hf,
+                        const Domain& dom, const std::vector<Vec3f>& v, double dt, Fluid& f) {
   const size_t n = f.size();
   const float m = float(k.mass);
   const float diffusion = float(k.delta * k.h * std::sqrt(k.c2));
   const float hydro = float(k.rho0 * k.gravity / k.c2);
   std::vector<float>& next = f.scratch;
   next.resize(n);
-#pragma omp parallel for schedule(static)
+  double maxRate = 0.0;
+#pragma omp parallel for schedule(static) reduction(max : maxRate)
   for (size_t i = 0; i < n; ++i) {
     const Vec3f vi = v[i];
     const float rhoi = f.rho[i];
@@ -165,14 +166,20 @@ void integrateDensity(const SphConstants& k, const NeighborLists& nbrs, const He
     forEachWall(hf, dom, k.h, f.x[i], [&](const Eigen::Vector3d& nrm, double d) {
       wall -= k.rho0 * k.planeDensity(d) * vi.cast<double>().dot(nrm);
     });
-    double rho = rhoi + dt * (double(div) + double(diffusion * diff) + wall);
-    next[i] = float(rho);
+    const double rate = double(div) + double(diffusion * diff) + wall;
+    maxRate = std::max(maxRate, std::abs(rate) / rhoi);
+    double rho = rhoi + dt * rate;
+    // Floor at ρ0/2: below ρ0 the pressure is 0 anyway, but a splash particle leaving a wall
+    // keeps losing continuity density through the wall term and would reach 0 or below, where
+    // ρ0/ρ (wall support) and m/ρ (viscosity) blow up (docs/model.md; `scour stress`).
+    next[i] = float(std::max(rho, 0.5 * k.rho0));
   }
 #pragma omp parallel for schedule(static)
   for (size_t i = 0; i < n; ++i) {
     f.rho[i] = next[i];
     f.p[i] = float(k.pressure(next[i]));
   }
+  return maxRate;
 }
 
 double SphConstants::pressure(double rho) const {
@@ -227,7 +234,10 @@ void applyBoundaryForces(const SphConstants& k, const Heightfield& hf, const Dom
     const double pressure = 2.0 * k.mass * f.p[i] / (double(f.rho[i]) * f.rho[i]);
     Eigen::Vector3d acc = Eigen::Vector3d::Zero();
     const Eigen::Vector3d v = vhat[i].cast<double>();
-    const double rhoRatio = k.rho0 / f.rho[i];
+    // The mirrored hydrostatic pressure below holds only where the pressure exceeds its rise
+    // across the kernel; a particle at the free surface (a splash) gets a proportional share.
+    const double support = std::clamp(double(f.p[i]) / (k.rho0 * k.gravity * k.h), 0.0, 1.0);
+    const double rhoRatio = support * k.rho0 / f.rho[i];
     forEachWall(hf, dom, k.h, f.x[i], [&](const Eigen::Vector3d& nrm, double d) {
       acc += pressure * k.wallGradient(d) * nrm;
       // The mirrored pressure grows hydrostatically into the wall, p_j = p_i + ρ0 g⃗·(x_j − x_i);

@@ -76,6 +76,11 @@ template <class F>
 inline void forEachWall(const Heightfield& hf, const Domain& dom, double h, const Vec3f& x, F&& f) {
   SurfacePoint s = hf.surface(x.x(), x.z());
   double dt = (x.y() - s.height) * s.normal.y();
+  // Over a steep triangle (a cliff's riser, narrower than h) the distance to its plane can be
+  // far less than the distance to the triangle itself: a particle above the cliff's edge would
+  // be pushed off it. Above the surface, the distance is to the triangle (`scour stress`, cliffs).
+  if (dt > 0 && s.normal.y() < 0.5)
+    dt = std::max(dt, hf.distanceToTriangle(s.triangle, x.cast<double>()));
   if (dt < h) f(s.normal, dt);
   if (!dom.walls) return;
   double d;
@@ -93,8 +98,9 @@ void computeDensity(const SphConstants& k, const NeighborLists& nbrs, const Heig
 /// walls' share, integrated over dt with the drift velocity v; then p_i. Unlike the summation it
 /// reads ρ0 at a free surface and does not drift with the particle arrangement, which is what
 /// keeps a still column at hydrostatic pressure.
-void integrateDensity(const SphConstants& k, const NeighborLists& nbrs, const Heightfield& hf,
-                      const Domain& dom, const std::vector<Vec3f>& v, double dt, Fluid& f);
+/// Returns the largest relative density rate max |dρ/dt|/ρ, for the next step's Δt.
+double integrateDensity(const SphConstants& k, const NeighborLists& nbrs, const Heightfield& hf,
+                        const Domain& dom, const std::vector<Vec3f>& v, double dt, Fluid& f);
 
 /// Pressure, viscosity, surface tension and gravity: a_i. `vhat` is the velocity at the force
 /// time (the leapfrog's predicted full-step velocity).

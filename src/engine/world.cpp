@@ -127,11 +127,13 @@ World::World(WorldDesc d)
     f_.sed[i] = c * sk_.volume;
   }
   initialSoil_ = soilBudget().total();
+  energyLedger_ = mechanicalEnergy();
   for (size_t i = 0; i < f_.size(); ++i) {
     const double c = f_.sed[i] / sk_.volume;
     inv_.c_min = i == 0 ? c : std::min(inv_.c_min, c);
     inv_.c_max = i == 0 ? c : std::max(inv_.c_max, c);
   }
+  defects_.c_min_raw = inv_.c_min, defects_.c_max_raw = inv_.c_max;
   searchNeighbors();
   if (fx_.fluid_motion) computeAccelerations();  // frozen fluid: no SPH pass ever runs
 }
@@ -159,6 +161,7 @@ double World::chooseDt() const {
   if (fx_.fluid_motion) {
     dt = std::min(dt, p_.cfl * h / std::max(p_.sound_speed, std::sqrt(double(v2))));
     if (a2 > 0) dt = std::min(dt, p_.force_cfl * std::sqrt(h / std::sqrt(double(a2))));
+    if (densityRate_ > 0) dt = std::min(dt, p_.density_cfl / densityRate_);
     if (p_.viscosity > 0) dt = std::min(dt, 0.125 * h * h / p_.viscosity);
     dt = std::min(dt, 0.5 / std::sqrt(p_.penalty_stiffness));
   }
@@ -170,25 +173,49 @@ double World::chooseDt() const {
 }
 
 void World::searchNeighbors() {
-  timed(Pass::kNeighborSearch, [&] {
-    grid_.build(f_.x, float(k_.h));
-    nbrs_.build(grid_, f_.x, f_.x, grid_.start(), grid_.sorted(), float(k_.h), true);
-  });
+  timed(Pass::kNeighborSearch, [&] { buildFluidLists(); });
   if (!needsBoundary()) return;
   timed(Pass::kBoundaryParticles, [&] {
     if (sampler_.updateActiveTiles(hf_, f_.x, k_.h)) sampler_.generate(hf_, b_);
   });
-  timed(Pass::kBoundaryNeighbors, [&] {
-    grid_.binOther(b_.x, bstart_, bsorted_);
-    bnbrs_.build(grid_, f_.x, b_.x, bstart_, bsorted_, float(k_.h), false);
-  });
+  timed(Pass::kBoundaryNeighbors, [&] { buildBoundaryLists(); });
+}
+
+void World::buildFluidLists() {
+  if (p_.neighbor_search == 1) {
+    // The paper's kd-tree, rebuilt every step; the same sets as the grid, in ascending index.
+    fluidTree_.build(f_.x);
+    nbrs_.build(fluidTree_, f_.x, float(k_.h), true);
+    gridStale_ = true;
+    return;
+  }
+  grid_.build(f_.x, float(k_.h));
+  nbrs_.build(grid_, f_.x, f_.x, grid_.start(), grid_.sorted(), float(k_.h), true);
+  gridStale_ = false;
+}
+
+void World::buildBoundaryLists() {
+  if (p_.neighbor_search == 1) {
+    boundaryTree_.build(b_.x);
+    bnbrs_.build(boundaryTree_, f_.x, float(k_.h), false);
+    return;
+  }
+  grid_.binOther(b_.x, bstart_, bsorted_);
+  bnbrs_.build(grid_, f_.x, b_.x, bstart_, bsorted_, float(k_.h), false);
+}
+
+void World::ensurePlacementGrid() {
+  if (!gridStale_) return;
+  grid_.build(f_.x, float(k_.h));
+  gridStale_ = false;
 }
 
 void World::computeAccelerations() {
   if (vhat_.size() != f_.size()) vhat_ = f_.v;
   timed(Pass::kDensity, [&] {
     if (k_.continuity)
-      integrateDensity(k_, nbrs_, hf_, dom_, f_.v, dt_, f_);  // f_.v holds v(t + Δt/2) here
+      // f_.v holds v(t + Δt/2) here
+      densityRate_ = integrateDensity(k_, nbrs_, hf_, dom_, f_.v, dt_, f_);
     else
       computeDensity(k_, nbrs_, hf_, dom_, f_);
   });
@@ -211,7 +238,7 @@ void World::removeParticles() {
         for (const Sink& s : sinks_) sunk = sunk || s.contains(x);
       bool out = open && (x.x() < hf_.x0() || x.x() > hf_.xMax() || x.z() < hf_.z0() ||
                           x.z() > hf_.zMax());
-      if (sunk || out) removedSediment_ += f_.sed[i];
+      if (sunk || out) removedSediment_ += f_.sed[i], energyLedger_ -= particleEnergy(i);
       if (sunk) ++removedSinks_;
       else if (out) ++removedOutflow_;
       else keep.push_back(uint32_t(i));
@@ -225,6 +252,15 @@ bool World::place(const Vec3f& pos, const Vec3f& vel, double clearance) {
   // than a cell since, so its 27 cells still hold every particle within a clearance (≤ Δs) of
   // pos. Particles placed since (index ≥ the grid's count: this step's drops and layers, the
   // brush's) are checked one by one; there are few.
+  ensurePlacementGrid();
+  // Never inside a closed wall's contact zone: the wall's spring would hand the new particle
+  // energy no source supplied (`scour stress`, edge-source and cloudburst).
+  if (dom_.walls) {
+    const double m = wallMargin() * (1 - 1e-6);
+    if (pos.x() < hf_.x0() + m || pos.x() > hf_.xMax() - m || pos.z() < hf_.z0() + m ||
+        pos.z() > hf_.zMax() - m)
+      return false;
+  }
   const float r2 = float(clearance * clearance * p_.spacing * p_.spacing);
   const size_t indexed = grid_.particleCount();
   bool occupied = false;
@@ -236,7 +272,18 @@ bool World::place(const Vec3f& pos, const Vec3f& vel, double clearance) {
   if (occupied) return false;
   f_.push(pos, vel, nextId_++, float(p_.rest_density));
   vhat_.push_back(vel);
+  energyLedger_ += particleEnergy(f_.size() - 1);
   return true;
+}
+
+double World::particleEnergy(size_t i) const {
+  return k_.mass * (0.5 * double(f_.v[i].squaredNorm()) + p_.gravity * double(f_.x[i].y()));
+}
+
+double World::mechanicalEnergy() const {
+  double e = 0;  // a fixed-order sum, like every other reduction here
+  for (size_t i = 0; i < f_.size(); ++i) e += particleEnergy(i);
+  return e;
 }
 
 void World::emit() {
@@ -250,7 +297,7 @@ void World::emit() {
         const Eigen::Vector3d base = e.src.center + e.src.direction * e.travelled;
         const Vec3f vel = (e.src.direction * e.speed).cast<float>();
         for (const auto& off : e.slots) {
-          const bool placed = place((base + off).cast<float>(), vel);
+          const bool placed = place((base + off).cast<float>(), vel, kEmitClearance);
           ++(placed ? e.emitted : e.blocked);
           emittedTotal_ += placed;
         }
@@ -271,7 +318,12 @@ void World::rain() {
       while (r.pending >= drop) {
         r.pending -= drop;
         const auto [u, w] = RainState::point(rn.seed, r.drawn++);
-        const double x = rn.lo_x + u * (rn.hi_x - rn.lo_x), z = rn.lo_z + w * (rn.hi_z - rn.lo_z);
+        double x = rn.lo_x + u * (rn.hi_x - rn.lo_x), z = rn.lo_z + w * (rn.hi_z - rn.lo_z);
+        if (dom_.walls) {  // a drop falls clear of the closed walls' contact zone
+          const double m = wallMargin();
+          x = std::clamp(x, hf_.x0() + m, hf_.xMax() - m);
+          z = std::clamp(z, hf_.z0() + m, hf_.zMax() - m);
+        }
         const double y = hf_.heightAt(x, z) + std::max(rn.drop_height, p_.spacing);
         const bool placed = place(Vec3f(float(x), float(y), float(z)), Vec3f(0, -float(rn.drop_speed), 0));
         ++(placed ? r.emitted : r.blocked);
@@ -286,6 +338,13 @@ void World::sedimentWork() {
   if (sfx.settling || sfx.diffusion || sfx.deposition) {
     timed(Pass::kSediment, [&] {
       transferSediment(sk_, sfx, nbrs_, bnbrs_, b_, dt_, f_, acc_, sedimentWork_);
+      const SedimentDefects& d = sedimentWork_.defects;
+      if (sk_.advection == 1 && sfx.settling && f_.size() > 0) {
+        defects_.created += d.created;
+        defects_.clipped += d.clipped;
+        defects_.c_min_raw = std::min(defects_.c_min_raw, d.c_min_raw);
+        defects_.c_max_raw = std::max(defects_.c_max_raw, d.c_max_raw);
+      }
     });
   }
   if (sfx.erosion) timed(Pass::kErosion, [&] { erode(sk_, bnbrs_, b_, dt_, f_, acc_); });
@@ -304,6 +363,10 @@ void World::setParams(const SimParams& q) {
               q.rest_density == p_.rest_density,
           "fluid.spacing, fluid.support_over_spacing and fluid.rest_density shape the particles: "
           "they change with a reset");
+  // The lists of the last search are in the old method's order; a switch mid-run would make the
+  // run depend on when it happened (and a study compares whole runs), so it needs a reset.
+  require(q.neighbor_search == p_.neighbor_search,
+          "engine.neighbor_search changes with a reset");
   p_ = resolve(q);
   k_ = SphConstants(p_);
   if (!fx_.surface_tension) k_.kappa = 0;
@@ -342,6 +405,13 @@ size_t World::addSink(const Sink& s) {
   return sinks_.size() - 1;
 }
 
+void World::updateSink(size_t i, const Sink& s) {
+  require(i < sinks_.size(), "sink " + std::to_string(i) + " does not exist");
+  require(s.lo.allFinite() && s.hi.allFinite() && (s.hi - s.lo).minCoeff() > 0,
+          "sink: max must exceed min on every axis");
+  sinks_[i] = s;
+}
+
 void World::removeSink(size_t i) {
   require(i < sinks_.size(), "sink " + std::to_string(i) + " does not exist");
   sinks_.erase(sinks_.begin() + long(i));
@@ -373,6 +443,7 @@ SoilBudget World::soilBudget() const {
   for (double v : f_.sed) s.suspended += v;
   s.removed = removedSediment_;
   s.initial = initialSoil_;
+  s.created = defects_.created;
   return s;
 }
 
@@ -431,10 +502,7 @@ StepStats World::step() {
   } else if (fx_.erosion || fx_.deposition) {
     // The terrain moved under frozen fluid: the boundary particles followed it, so their
     // neighbor lists are rebuilt (the fluid's are unchanged).
-    timed(Pass::kBoundaryNeighbors, [&] {
-      grid_.binOther(b_.x, bstart_, bsorted_);
-      bnbrs_.build(grid_, f_.x, b_.x, bstart_, bsorted_, float(k_.h), false);
-    });
+    timed(Pass::kBoundaryNeighbors, [&] { buildBoundaryLists(); });
   }
   const size_t n = f_.size();
   if (fx_.fluid_motion) {
@@ -486,7 +554,10 @@ void World::checkInvariants() {
         upd(badNan, long(i));
         continue;
       }
-      double depth = (hf_.heightAt(x.x(), x.z()) - x.y()) / ds;
+      // Depth across the terrain (along its normal): the vertical one would call a particle
+      // touching a near-vertical cliff face deep inside it.
+      const SurfacePoint sp = hf_.surface(x.x(), x.z());
+      double depth = (sp.height - x.y()) * sp.normal.y() / ds;
       if (depth > tdeep || (depth == tdeep && long(i) < tat)) tdeep = depth, tat = long(i);
       if (dom_.walls && (x.x() < hf_.x0() - slack || x.x() > hf_.xMax() + slack ||
                          x.z() < hf_.z0() - slack || x.z() > hf_.zMax() + slack))
@@ -599,7 +670,8 @@ void getVec(std::istream& in, std::vector<T>& v, const char* what, uint64_t expe
 }
 
 constexpr uint32_t kStateTag = 0x444C5257;  // "WRLD"
-constexpr uint32_t kStateVersion = 1;
+// Version 2 adds the sediment defects (naive advection); version 1 states load with none.
+constexpr uint32_t kStateVersion = 2;
 
 }  // namespace
 
@@ -619,6 +691,7 @@ void World::saveState(std::ostream& o) const {
   put(o, removedSinks_), put(o, removedOutflow_), put(o, emittedTotal_), put(o, removedSediment_);
   put(o, paintedTotal_);
   put(o, inv_);
+  put(o, defects_);
 }
 
 void World::loadState(std::istream& in) {
@@ -626,7 +699,7 @@ void World::loadState(std::istream& in) {
   get(in, tag, "header");
   get(in, version, "header");
   if (tag != kStateTag) throw std::runtime_error("not a Scour world state");
-  if (version != kStateVersion)
+  if (version != kStateVersion && version != 1)
     throw std::runtime_error("world state version " + std::to_string(version) +
                              " is not the version " + std::to_string(kStateVersion) +
                              " this build reads");
@@ -669,26 +742,26 @@ void World::loadState(std::istream& in) {
   get(in, emittedTotal_, "counters"), get(in, removedSediment_, "counters");
   get(in, paintedTotal_, "counters");
   get(in, inv_, "invariants");
+  defects_ = {};
+  if (version >= 2) get(in, defects_, "sediment defects");
   f.scratch.clear();
   f_ = std::move(f);
   vhat_ = std::move(vhat);
   hf_.heights() = std::move(heights);
   b_ = std::move(b);
   sampler_.setActiveTiles(std::move(tiles));
+  energyLedger_ = mechanicalEnergy();
   // The neighbor lists of the last search: the particles have not moved since it (a step ends
   // with a kick), and the boundary lists are rebuilt on the boundary particles' places.
-  grid_.build(f_.x, float(k_.h));
-  nbrs_.build(grid_, f_.x, f_.x, grid_.start(), grid_.sorted(), float(k_.h), true);
-  if (needsBoundary()) {
-    grid_.binOther(b_.x, bstart_, bsorted_);
-    bnbrs_.build(grid_, f_.x, b_.x, bstart_, bsorted_, float(k_.h), false);
-  }
+  buildFluidLists();
+  if (needsBoundary()) buildBoundaryLists();
 }
 
 size_t World::memoryBytes() const {
   // x v a vhat, rho p scratch, id, sed
   size_t per = sizeof(Vec3f) * 4 + sizeof(float) * 3 + sizeof(uint32_t) + sizeof(double);
-  return f_.x.capacity() * per + grid_.bytes() + nbrs_.bytes() + bnbrs_.bytes() +
+  return f_.x.capacity() * per + grid_.bytes() + fluidTree_.bytes() + boundaryTree_.bytes() +
+         nbrs_.bytes() + bnbrs_.bytes() +
          b_.x.capacity() * (sizeof(Vec3f) + sizeof(int) + sizeof(double) + sizeof(Eigen::Vector2f)) +
          (bstart_.capacity() + bsorted_.capacity()) * sizeof(uint32_t) +
          (sedimentWork_.conc.capacity() + sedimentWork_.hind.capacity() +

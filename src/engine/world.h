@@ -71,10 +71,11 @@ struct Effects {
 };
 
 /// The soil budget [m³]: terrain above the initial lowest height, sediment suspended in the
-/// fluid, sediment carried out by sinks and open walls.
+/// fluid, sediment carried out by sinks and open walls, less the sediment a non-conservative
+/// numerical form made (the naive advection, sediment.advection = 1; 0 otherwise).
 struct SoilBudget {
-  double terrain = 0, suspended = 0, removed = 0, initial = 0;
-  double total() const { return terrain + suspended + removed; }
+  double terrain = 0, suspended = 0, removed = 0, initial = 0, created = 0;
+  double total() const { return terrain + suspended + removed - created; }
   double relativeError() const { return initial != 0 ? std::abs(total() - initial) / initial : 0; }
 };
 
@@ -122,8 +123,8 @@ class World {
 
   // Live edits (the app's commands, applied between steps).
   /// New parameters from the next step on. Throws std::invalid_argument naming the field for an
-  /// invalid set, or for a change of fluid.spacing, fluid.support_over_spacing or
-  /// fluid.rest_density (they shape the particles: those need a reset).
+  /// invalid set, or for a change of fluid.spacing, fluid.support_over_spacing,
+  /// fluid.rest_density (they shape the particles) or engine.neighbor_search: those need a reset.
   void setParams(const SimParams& p);
   /// The sources as they are now.
   std::vector<Source> sources() const;
@@ -134,6 +135,8 @@ class World {
   void removeSource(size_t i);
   const std::vector<Sink>& sinks() const { return sinks_; }
   size_t addSink(const Sink& s);
+  /// Changes a sink's box (validated as in addSink); what it removed so far stays counted.
+  void updateSink(size_t i, const Sink& s);
   void removeSink(size_t i);
   /// Fills the free lattice points of spacing Δs within `radius` of `centre` that lie at least
   /// Δs/2 above the terrain with water at rest (the brush). Returns how many particles it added.
@@ -158,6 +161,13 @@ class World {
   long emitted() const { return emittedTotal_; }
   long painted() const { return paintedTotal_; }
   long blockedSlots() const;
+  /// Mechanical energy of the fluid now, Σ m (½|v|² + g y) [J].
+  double mechanicalEnergy() const;
+  /// The mechanical energy the fluid has been given: its value at construction plus that of every
+  /// particle placed since (sources, rain, brush) minus that of every particle removed (sinks,
+  /// open walls) [J]. Without dissipation mechanicalEnergy() would equal it; it may only fall
+  /// below. Not part of saveState: after loadState it counts from the loaded state.
+  double energyLedger() const { return energyLedger_; }
 
   /// A budget further than this from its initial value stops the run (relative).
   static constexpr double kSoilTolerance = 1e-6;
@@ -166,6 +176,10 @@ class World {
   /// Height change of every vertex since the start [m].
   std::vector<double> heightChange() const;
   const Heightfield& initialTerrain() const { return hf0_; }
+  /// What the naive advection (sediment.advection = 1) made or destroyed since the start, and the
+  /// extreme C before the clamp (from the initial range on). With the conservative forms the
+  /// volumes stay 0 and the C range is the initial one.
+  const SedimentDefects& sedimentDefects() const { return defects_; }
   /// Sediment concentration C of particle i.
   double concentration(size_t i) const { return f_.sed[i] / sk_.volume; }
 
@@ -185,11 +199,25 @@ class World {
   void timed(Pass pass, F&& f);
   double chooseDt() const;
   void searchNeighbors();
+  /// The fluid–fluid lists (grid or kd-tree, as p_.neighbor_search says).
+  void buildFluidLists();
+  /// The fluid–boundary lists, after buildFluidLists.
+  void buildBoundaryLists();
+  /// Makes grid_ index the particles as they are now if the last search did not (kd-tree mode).
+  void ensurePlacementGrid();
   void computeAccelerations();
   void removeParticles();
   void emit();
   void rain();
-  /// Places a particle unless one lies closer than clearance·Δs; returns whether it did.
+  /// A source's new particle needs this much room (in Δs): its layer comes Δs after the last
+  /// one, so less room means the water ahead is held up (a jet into a wall) and a new particle
+  /// would be squeezed into it.
+  static constexpr double kEmitClearance = 0.8;
+  /// Distance from a closed wall within which no particle is placed: Δs/2 (where a lattice's
+  /// first layer sits), or the contact distance if larger [m].
+  double wallMargin() const { return p_.spacing * std::max(0.5, p_.contact_over_spacing); }
+  /// Places a particle unless one lies closer than clearance·Δs, or a closed wall closer than
+  /// wallMargin(); returns whether it did.
   bool place(const Vec3f& pos, const Vec3f& vel, double clearance = 0.5);
   void checkInvariants();
   void sedimentWork();
@@ -204,6 +232,7 @@ class World {
   TerrainAccumulator acc_;
   SedimentWorkspace sedimentWork_;
   double removedSediment_ = 0, initialSoil_ = 0;
+  SedimentDefects defects_;
   Domain dom_;
   Effects fx_;
   Fluid f_;
@@ -212,6 +241,9 @@ class World {
   std::vector<Sink> sinks_;
   std::vector<RainState> rain_;
   Grid grid_;
+  /// kd-tree mode: grid_ is built on demand for place() and the Z-order, not by the search.
+  bool gridStale_ = false;
+  KdTree fluidTree_, boundaryTree_;
   NeighborLists nbrs_, bnbrs_;
   BoundarySampler sampler_;
   BoundaryParticles b_;
@@ -220,6 +252,11 @@ class World {
   long step_ = 0;
   uint32_t nextId_ = 0;
   long removedSinks_ = 0, removedOutflow_ = 0, emittedTotal_ = 0, paintedTotal_ = 0;
+  double energyLedger_ = 0;
+  /// max |dρ/dt|/ρ of the last continuity step [1/s]; 0 = none yet.
+  double densityRate_ = 0;
+  /// m (½|v|² + g y) of particle i [J].
+  double particleEnergy(size_t i) const;
   InvariantReport inv_;
   std::array<double, size_t(Pass::kCount)> passSeconds_{};
   std::array<long, size_t(Pass::kCount)> passCalls_{};

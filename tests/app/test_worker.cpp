@@ -1,7 +1,7 @@
 // The simulation worker: frames arrive through the triple buffer while the engine steps; commands
-// posted from this thread take effect between steps (parameters, sources, pause, single step,
-// reset); a bad command is reported, not applied. Built twice: in scour_tests, and with
-// ThreadSanitizer in scour_tsan_tests, where parameter edits arrive during steps.
+// posted from this thread take effect between steps (parameters, sources, sinks, pause, single
+// step, reset, snapshots); a bad command is reported, not applied. Built twice: in scour_tests, and
+// with ThreadSanitizer in scour_tsan_tests, where parameter edits arrive during steps.
 #include <catch2/catch.hpp>
 
 #include <chrono>
@@ -87,6 +87,120 @@ TEST_CASE("commands take effect between steps", "[app][worker]") {
   REQUIRE(waitFor(w, [&](const Snapshot& s) { return s.generation == 2 && s.frame.step == 0; }));
   CHECK(w.latest().sources.size() == 2);
   CHECK(w.latest().params.k_eps == 0.25);
+}
+
+TEST_CASE("sinks placed, resized and removed while paused", "[app][worker]") {
+  SceneSpec spec = small();
+  spec.sinks.clear();
+  spec.sources.clear();  // nothing emitted: every particle gone went through a sink or a wall
+  SimulationWorker w(spec, /*paused=*/true);
+  REQUIRE(waitFor(w, [](const Snapshot& s) { return s.paused; }));
+  const size_t before = w.latest().frame.particles();
+  REQUIRE(before > 100);
+  long step = w.latest().frame.step;
+  auto stepOnce = [&] {
+    w.post(cmd::StepOnce{});
+    ++step;
+    REQUIRE(waitFor(w, [&](const Snapshot& s) { return s.frame.step == step; }));
+  };
+  // An empty box is refused, and nothing changes.
+  w.post(cmd::AddSink{Sink{{0.1, 0.5, 0.1}, {0.0, 0.6, 0.2}}});
+  stepOnce();
+  CHECK_THAT(w.latest().error, Catch::Contains("sink"));
+  CHECK(w.latest().sinks.empty());
+  CHECK(w.latest().removedBySinks == 0);
+  // A sink over part of the water resting at the upper end takes what lies in it, and says so.
+  const Sink part{{0.0, -1.0, 0.0}, {0.15, 3.0, 0.8}};
+  w.post(cmd::AddSink{part});
+  stepOnce();
+  const long first = w.latest().removedBySinks;
+  CHECK(w.latest().sinks.size() == 1);
+  CHECK(w.spec().sinks.size() == 1);
+  CHECK(first > 0);
+  CHECK(w.latest().frame.particles() <= before - size_t(first));
+  CHECK(w.latest().soil.relativeError() < 1e-6);
+  // Widened over the whole block, it takes the rest of it.
+  Sink wide = part;
+  wide.hi.x() = 0.4;
+  w.post(cmd::UpdateSink{0, wide});
+  stepOnce();
+  CHECK(w.latest().sinks.at(0).hi.x() == 0.4);
+  CHECK(w.spec().sinks.at(0).hi.x() == 0.4);
+  const long second = w.latest().removedBySinks;
+  CHECK(second > first);
+  // A sink that does not exist, or a bad box, is refused.
+  w.post(cmd::UpdateSink{5, wide});
+  stepOnce();
+  CHECK_THAT(w.latest().error, Catch::Contains("sink 5 does not exist"));
+  w.post(cmd::UpdateSink{0, Sink{wide.hi, wide.lo}});
+  stepOnce();
+  CHECK_THAT(w.latest().error, Catch::Contains("max must exceed min"));
+  CHECK(w.latest().sinks.at(0).hi.x() == 0.4);
+  // Removed: what it took stays counted, in the budget too.
+  w.post(cmd::RemoveSink{0});
+  stepOnce();
+  CHECK(w.latest().sinks.empty());
+  CHECK(w.spec().sinks.empty());
+  CHECK(w.latest().removedBySinks >= second);
+  CHECK(w.latest().soil.relativeError() < 1e-6);
+  w.post(cmd::RemoveSink{0});
+  stepOnce();
+  CHECK_THAT(w.latest().error, Catch::Contains("sink 0 does not exist"));
+}
+
+TEST_CASE("a snapshot brings the terrain back exactly", "[app][worker]") {
+  SimulationWorker w(small());
+  // Some steps first, so the state kept is not the scene's start.
+  REQUIRE(waitFor(w, [](const Snapshot& s) { return s.frame.step >= 10; }));
+  w.post(cmd::Pause{});
+  REQUIRE(waitFor(w, [](const Snapshot& s) { return s.paused; }));
+  w.post(cmd::TakeSnapshot{});
+  REQUIRE(waitFor(w, [](const Snapshot& s) { return s.snapshots.size() == 1; }));
+  const Snapshot kept = w.latest();
+  const SnapshotInfo info = kept.snapshots[0];
+  CHECK(info.step == kept.frame.step);
+  CHECK(info.time == kept.frame.time);
+  CHECK(info.particles == kept.frame.particles());
+  // Erosion and deposition change the terrain; a source added since does not survive a restore.
+  Source extra = kept.sources.at(0);
+  extra.center.z() += 0.2;
+  w.post(cmd::AddSource{extra});
+  w.post(cmd::Resume{});
+  REQUIRE(waitFor(w, [&](const Snapshot& s) {
+    return s.frame.height != kept.frame.height && s.sources.size() == 2;
+  }));
+  w.post(cmd::Pause{});
+  w.post(cmd::RestoreSnapshot{info.id});
+  REQUIRE(waitFor(w, [&](const Snapshot& s) { return s.generation == kept.generation + 1; }));
+  const Snapshot& back = w.latest();
+  INFO(back.error);
+  CHECK(back.error.empty());
+  CHECK(back.frame.height == kept.frame.height);  // exactly
+  CHECK(back.frame.change == kept.frame.change);
+  CHECK(back.frame.step == kept.frame.step);
+  CHECK(back.frame.time == kept.frame.time);
+  CHECK(back.frame.position == kept.frame.position);
+  CHECK(back.sources.size() == 1);
+  CHECK(w.spec().sources.size() == 1);
+  // The soil budget is the one kept, so it still closes.
+  CHECK(back.soil.terrain == kept.soil.terrain);
+  CHECK(back.soil.suspended == kept.soil.suspended);
+  CHECK(back.soil.removed == kept.soil.removed);
+  CHECK(back.soil.initial == kept.soil.initial);
+  CHECK(back.soil.relativeError() < 1e-6);
+  CHECK(back.snapshots.size() == 1);  // still there, to go back to again
+  // It steps on from there.
+  w.post(cmd::StepOnce{});
+  REQUIRE(waitFor(w, [&](const Snapshot& s) { return s.frame.step == kept.frame.step + 1; }));
+  CHECK(w.latest().error.empty());
+  // Deleted, it is gone; restoring it then is refused and changes nothing.
+  w.post(cmd::DeleteSnapshot{info.id});
+  w.post(cmd::RestoreSnapshot{info.id});
+  w.post(cmd::StepOnce{});
+  REQUIRE(waitFor(w, [&](const Snapshot& s) { return s.frame.step == kept.frame.step + 2; }));
+  CHECK(w.latest().snapshots.empty());
+  CHECK_THAT(w.latest().error, Catch::Contains("does not exist"));
+  CHECK(w.latest().generation == kept.generation + 1);
 }
 
 TEST_CASE("parameter edits arriving during steps are safe", "[app][worker][tsan]") {

@@ -24,24 +24,55 @@ set -e
   || { echo "bad --size: $rc $msg"; exit 1; }
 echo "bad window options refused"
 # A scripted interaction: click the terrain in the middle of the window to place a source, and
-# set Kε through the panel's path (0.35, then 0.5, then undo). Afterwards the engine reports
-# Kε = 0.35 and particles have come out near the clicked point.
+# set Kε through the panel's path (0.35, then 0.5, then undo). Then drag the new source (source 1:
+# the scene has one) down the valley: the engine's source ends at the drop point and emits there.
+# The drag is one undo step: two undos take back the drag and the Kε edit (not a piece of the
+# drag), two redos bring both back. Last, a sink placed by clicking and a snapshot.
+# Afterwards the engine reports Kε = 0.35, the source where it was dropped, particles coming out
+# of it there, two sinks and one snapshot.
 cat > "$tmp/script.txt" <<'SCRIPT'
 # frame action arguments
 3 place on
 4 click 320 200
+5 place off
 6 set erosion.k_eps 0.35
 10 set erosion.k_eps 0.5
 14 press undo
+20 drag 320 200 360 165   # from the source's foot to the valley floor further down
+32 press undo
+34 press undo
+38 press redo
+40 press redo
+44 sink on
+46 click 250 215
+48 press snapshot
 SCRIPT
 out=$(xvfb-run -a -s "-screen 0 800x600x24" "$scour" --scale 0.2 --size 640x400 --replay "$tmp/script.txt" \
       --quit-after-frames 120 2>&1)
 grep -q "erosion.k_eps 0.35" <<<"$out" || { echo "Kε not set: $out"; exit 1; }
 grep -q "log: source placed at" <<<"$out" || { echo "no source placed: $out"; exit 1; }
 grep -q "log: undo: erosion.k_eps = 0.5" <<<"$out" || { echo "no undo: $out"; exit 1; }
-near=$(sed -n 's/.*particles within 0.25 m of the last placed source \([0-9]*\).*/\1/p' <<<"$out")
+history=$(grep -E "^log: (undo|redo): " <<<"$out" | tr '\n' '|')
+[ "$history" = "log: undo: erosion.k_eps = 0.5|log: undo: move source 1|log: undo: erosion.k_eps = 0.35|log: redo: erosion.k_eps = 0.35|log: redo: move source 1|" ] \
+  || { echo "the drag is not one undo step: $history"; exit 1; }
+grep -q "log: sink placed at" <<<"$out" && grep -q "; 2 sinks, removed" <<<"$out" || { echo "no sink placed: $out"; exit 1; }
+grep -q "; 1 snapshots;" <<<"$out" || { echo "no snapshot: $out"; exit 1; }
+placed=$(sed -n 's/^log: source placed at (\([^)]*\)).*/\1/p' <<<"$out")
+dropped=$(sed -n 's/^log: source 1 moved to (\([^)]*\)).*/\1/p' <<<"$out")
+engine=$(sed -n 's/.* sources at \[([^)]*) (\([^)]*\))\].*/\1/p' <<<"$out")
+[ -n "$dropped" ] && [ "$engine" = "$dropped" ] || { echo "the source is at ($engine), not at the drop point ($dropped): $out"; exit 1; }
+python3 -c "
+import math, sys
+a, b = ([float(v) for v in s.split(',')] for s in sys.argv[1:3])
+d = math.dist(a, b)
+assert d > 0.2, 'the source moved only %.3f m' % d
+print('dragged %.3f m' % d)
+" "$placed" "$dropped" || { echo "$out"; exit 1; }
+near=$(sed -n 's/.*particles within 0.25 m of the last placed or moved source \([0-9]*\).*/\1/p' <<<"$out")
+disk=$(sed -n 's/.*around its disk \([0-9]*\);.*/\1/p' <<<"$out")
 emitted=$(sed -n 's/.*; emitted \([0-9]*\);.*/\1/p' <<<"$out")
-[ "${near:-0}" -ge 10 ] && [ "${emitted:-0}" -ge 10 ] || { echo "too few particles from the new source: $out"; exit 1; }
+[ "${near:-0}" -ge 10 ] && [ "${disk:-0}" -ge 10 ] && [ "${emitted:-0}" -ge 10 ] \
+  || { echo "too few particles from the moved source: $out"; exit 1; }
 echo "replay: $(head -1 <<<"$out")"
 # A bad replay file: exit 2 with the line named, before any window opens.
 printf '3 place on\n5 jump 1 2\n' > "$tmp/bad.txt"
@@ -50,6 +81,14 @@ msg=$("$scour" --replay "$tmp/bad.txt" 2>&1); rc=$?
 set -e
 [ $rc -eq 2 ] && grep -qF "bad.txt:2: unknown action 'jump'" <<<"$msg" || { echo "bad replay: $rc $msg"; exit 1; }
 echo "bad replay refused: $msg"
+# A bad argument is refused the same way (a drag takes four window pixels); a trailing comment is not
+# an argument.
+printf '3 place on   # a comment\n5 drag 1 2 three 4\n' > "$tmp/bad2.txt"
+set +e
+msg=$("$scour" --replay "$tmp/bad2.txt" 2>&1); rc=$?
+set -e
+[ $rc -eq 2 ] && grep -qF "bad2.txt:2: 'drag' takes window pixels, found 'three'" <<<"$msg" || { echo "bad drag: $rc $msg"; exit 1; }
+echo "bad drag refused: $msg"
 # bench --with-window: engine steps per second with the window open and with none.
 out=$(xvfb-run -a -s "-screen 0 1280x720x24" "$scour" bench default --scale 0.2 --with-window --seconds 1 --json 2>/dev/null | sed -n '/^{/,/^}/p')
 python3 -c "

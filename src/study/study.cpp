@@ -1,0 +1,443 @@
+#include "study/study.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <iomanip>
+#include <limits>
+#include <map>
+#include <sstream>
+
+#include "scene/presets.h"
+
+namespace scour {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+double seconds(Clock::time_point since) {
+  return std::chrono::duration<double>(Clock::now() - since).count();
+}
+
+// One run of a scene: steps `until` says no more, or an invariant breaks. `each` sees every step.
+struct Run {
+  double wall = 0;
+  std::string status = "ok";
+};
+template <class Until, class Each>
+Run drive(World& w, Until&& until, Each&& each) {
+  Run r;
+  const auto start = Clock::now();
+  try {
+    while (!until()) {
+      w.step();
+      each();
+    }
+  } catch (const InvariantViolation& e) {
+    r.status = std::string("unstable: ") + e.what();
+  }
+  r.wall = seconds(start);
+  return r;
+}
+
+StudyRow row(const std::string& study, const std::string& reference, const std::string& choice,
+             double error, const Run& run, const World& w) {
+  StudyRow r;
+  r.study = study;
+  r.reference = reference;
+  r.choice = choice;
+  r.error = run.status == "ok" ? error : kInf;
+  r.wall_seconds = run.wall;
+  r.simulated_seconds = w.time();
+  r.cost = w.time() > 0 ? run.wall / w.time() : kInf;
+  r.particles = long(w.fluid().size());
+  r.status = run.status;
+  return r;
+}
+
+// --- references -------------------------------------------------------------------------------
+
+// Martin & Moyce (1952), a = 2.25 in: (T, Z) with T = t √(2g/a), Z = front / a.
+const std::vector<std::pair<double, double>> kMartinMoyce = {
+    {0.832, 1.217}, {1.219, 1.474}, {1.997, 2.292}, {2.547, 2.995},
+    {3.345, 4.134}, {4.034, 4.944}, {4.418, 5.881}, {5.091, 6.980}};
+
+StudyRow damBreak(const std::string& study, const std::string& choice, SceneSpec spec,
+                  double tMax) {
+  const double a = 0.05715;
+  World w(buildScene(spec).desc);
+  const double tScale = std::sqrt(2.0 * w.params().gravity / a);
+  std::vector<std::pair<double, double>> front{{0.0, 1.0}};
+  auto xmax = [&] {
+    float m = 0;
+    for (const auto& x : w.fluid().x) m = std::max(m, x.x());
+    return double(m);
+  };
+  front.back().second = xmax() / a;
+  const Run run = drive(w, [&] { return w.time() * tScale > tMax + 0.2; },
+                        [&] { front.emplace_back(w.time() * tScale, xmax() / a); });
+  double worst = 0;
+  for (auto [T, Z] : kMartinMoyce) {
+    if (T > tMax) continue;
+    auto it = std::lower_bound(front.begin(), front.end(), std::make_pair(T, -1e300));
+    if (it == front.begin() || it == front.end()) {
+      worst = kInf;
+      continue;
+    }
+    const auto [T1, Z1] = *it;
+    const auto [T0, Z0] = *(it - 1);
+    const double z = Z0 + (Z1 - Z0) * (T - T0) / (T1 - T0);
+    worst = std::max(worst, std::abs(z - Z) / Z);
+  }
+  return row(study, "dam-break front", choice, worst, run, w);
+}
+
+StudyRow hydrostatic(const std::string& study, const std::string& choice, SceneSpec spec,
+                     double settle, double average) {
+  const Scene s = buildScene(spec);
+  const double ds = spec.params.spacing, g = spec.params.gravity, rho0 = spec.params.rest_density;
+  const Heightfield& hf = s.desc.terrain;
+  const double area = (hf.xMax() - hf.x0()) * (hf.zMax() - hf.z0());
+  const double H = double(s.desc.particles.size()) * ds * ds * ds / area;
+  World w(s.desc);
+  const int layers = int(std::ceil(H / ds)) + 2;
+  std::vector<double> sumP(layers, 0), sumY(layers, 0);
+  std::vector<long> count(layers, 0);
+  const Run run = drive(w, [&] { return w.time() >= settle + average; }, [&] {
+    if (w.time() < settle || w.steps() % 10) return;
+    const Fluid& f = w.fluid();
+    for (size_t i = 0; i < f.size(); ++i) {
+      const int b = int(f.x[i].y() / ds);
+      if (b < 0 || b >= layers) continue;
+      sumP[b] += f.p[i], sumY[b] += f.x[i].y(), ++count[b];
+    }
+  });
+  double worst = 0;
+  for (int b = 0; b < layers; ++b) {
+    if (count[b] == 0) continue;
+    const double y = sumY[b] / count[b], p = sumP[b] / count[b];
+    if (y > 0.8 * H) continue;
+    const double expect = rho0 * g * (H - y);
+    worst = std::max(worst, std::abs(p / expect - 1.0));
+  }
+  return row(study, "hydrostatic pressure", choice, worst, run, w);
+}
+
+double suspended(const World& w) {
+  double s = 0;
+  for (double v : w.fluid().sed) s += v;
+  return s;
+}
+
+// The settling lattice: the centroid's speed against |v_s| (least squares away from the top and
+// the floor), and the sediment the scheme made or lost, relative to what there was.
+std::vector<StudyRow> settling(const std::string& choice, int advection) {
+  SceneSpec spec = presetSpec("settling");
+  spec.params.advection = advection;
+  World w(buildScene(spec).desc);
+  const double vs = w.params().settlingSpeed(), h = w.params().support();
+  const double s0 = suspended(w);
+  const Fluid& f = w.fluid();
+  float yTop = 0;
+  for (size_t i = 0; i < f.size(); ++i)
+    if (f.sed[i] > 0) yTop = f.x[i].y();
+  auto centroid = [&] {
+    double sy = 0, s = 0;
+    for (size_t i = 0; i < f.size(); ++i) sy += f.sed[i] * f.x[i].y(), s += f.sed[i];
+    return sy / s;
+  };
+  std::vector<std::pair<double, double>> samples;
+  double budget = 0;
+  const Run run = drive(w, [&] { return centroid() <= 3 * h || w.time() > 60.0; }, [&] {
+    budget = std::max(budget, std::abs(suspended(w) - s0) / s0);
+    if (centroid() < yTop - h) samples.emplace_back(w.time(), centroid());
+  });
+  double speed = 0;
+  if (samples.size() > 2) {
+    double st = 0, sy = 0, stt = 0, sty = 0, n = double(samples.size());
+    for (auto [t, y] : samples) st += t, sy += y, stt += t * t, sty += t * y;
+    speed = -(n * sty - st * sy) / (n * stt - st * st);
+  }
+  return {row("advection", "settling speed", choice, std::abs(speed / vs - 1.0), run, w),
+          row("advection", "soil budget", choice, budget, run, w)};
+}
+
+// The diffusion lattice: dσ²/dt over 0.4 s once the pulse covers 1.5 h (or after 1 s, for a form
+// that hardly spreads it), against 2D.
+StudyRow diffusion(const std::string& choice, int form) {
+  SceneSpec spec = presetSpec("diffusion");
+  spec.params.diffusion_form = form;
+  World w(buildScene(spec).desc);
+  const double D = w.params().diffusion, h = w.params().support();
+  const Fluid& f = w.fluid();
+  const double s0 = suspended(w);
+  Eigen::Vector3d c0 = Eigen::Vector3d::Zero();
+  for (size_t i = 0; i < f.size(); ++i) c0 += f.sed[i] * f.x[i].cast<double>();
+  c0 /= s0;
+  auto variance = [&] {
+    Eigen::Vector3d v = Eigen::Vector3d::Zero();
+    for (size_t i = 0; i < f.size(); ++i) v += f.sed[i] * (f.x[i].cast<double>() - c0).cwiseAbs2();
+    return Eigen::Vector3d(v / suspended(w));
+  };
+  double t1 = -1;
+  Eigen::Vector3d v1 = Eigen::Vector3d::Zero();
+  const Run run = drive(
+      w, [&] { return t1 >= 0 && w.time() >= t1 + 0.4; },
+      [&] {
+        if (t1 < 0 && (variance().mean() >= std::pow(1.5 * h, 2) || w.time() >= 1.0))
+          t1 = w.time(), v1 = variance();
+      });
+  const Eigen::Vector3d growth = (variance() - v1) / (w.time() - t1);
+  return row("diffusion_form", "diffusion variance", choice, std::abs(growth.mean() / (2 * D) - 1),
+             run, w);
+}
+
+// The kd-tree against the grid: the same steps of a scene, positions compared by particle id.
+StudyRow neighborSearch(const std::string& choice, SceneSpec spec, long steps, int search,
+                        const std::vector<Vec3f>* gridPositions, std::vector<Vec3f>* out) {
+  spec.params.neighbor_search = search;
+  World w(buildScene(spec).desc);
+  long k = 0;
+  const Run run = drive(w, [&] { return k >= steps; }, [&] { ++k; });
+  const Fluid& f = w.fluid();
+  std::vector<Vec3f> byId(f.size());
+  for (size_t i = 0; i < f.size(); ++i)
+    if (f.id[i] < byId.size()) byId[f.id[i]] = f.x[i];
+  double worst = 0;
+  if (gridPositions && gridPositions->size() == byId.size())
+    for (size_t i = 0; i < byId.size(); ++i)
+      worst = std::max(worst, double(((*gridPositions)[i] - byId[i]).norm()));
+  if (out) *out = byId;
+  StudyRow r = row("neighbor_search", "grid lists (" + std::to_string(f.size()) + " particles)",
+                   choice, worst / spec.params.spacing, run, w);
+  return r;
+}
+
+std::string fmt(double v, int precision = 3) {
+  if (std::isinf(v)) return "inf";
+  std::ostringstream o;
+  o << std::setprecision(precision) << v;
+  return o.str();
+}
+
+}  // namespace
+
+std::vector<StudyRow> runEngineStudies(const StudyOptions& o) {
+  std::vector<StudyRow> rows;
+  auto add = [&](StudyRow r) {
+    if (o.log)
+      o.log(r.study + " / " + r.reference + " / " + r.choice + ": error " + fmt(r.error) +
+            ", " + fmt(r.wall_seconds, 2) + " s wall" + (r.status == "ok" ? "" : " — " + r.status));
+    rows.push_back(std::move(r));
+  };
+  const double tMax = o.quick ? 2.6 : 5.0;  // Martin & Moyce's points up to T = tMax
+  auto dam = [&](double scale) {
+    SceneSpec s = presetSpec("dambreak", scale);
+    return s;
+  };
+  auto damLabel = [](const SceneSpec& s) {
+    return "Δs = a/" + fmt(0.05715 / s.params.spacing, 3);
+  };
+
+  // 1. Particle spacing: the dam break and the hydrostatic tank at four or more levels.
+  const std::vector<double> damScales =
+      o.quick ? std::vector<double>{0.06, 0.125, 0.3, 1.0} : std::vector<double>{0.06, 0.125, 0.3, 1.0, 3.4};
+  for (double sc : damScales) {
+    SceneSpec s = dam(sc);
+    add(damBreak("spacing", damLabel(s), s, tMax));
+  }
+  const std::vector<double> tankSpacing = o.quick ? std::vector<double>{0.05, 0.04, 0.03, 0.025}
+                                                  : std::vector<double>{0.05, 0.04, 0.03, 0.02};
+  const double settle = o.quick ? 0.6 : 1.5, average = o.quick ? 0.2 : 0.5;
+  for (double ds : tankSpacing) {
+    SceneSpec s = presetSpec("hydrostatic");
+    s.params.spacing = ds;
+    add(hydrostatic("spacing", "Δs = " + fmt(ds * 100) + " cm", s, settle, average));
+  }
+
+  // 2. Time step: the paper's fixed 2 ms and smaller fixed steps against the adaptive CFL step.
+  const SceneSpec damBase = dam(o.quick ? 0.3 : 1.0);
+  const std::vector<double> fixed = o.quick ? std::vector<double>{0.002, 0.0001}
+                                            : std::vector<double>{0.002, 0.0005, 0.0002, 0.0001};
+  for (double dt : fixed) {
+    SceneSpec s = damBase;
+    s.params.fixed_dt = dt;
+    add(damBreak("time_step", "fixed Δt = " + fmt(dt * 1000) + " ms", s, tMax));
+  }
+  const std::vector<double> cfls = o.quick ? std::vector<double>{0.4, 0.2}
+                                           : std::vector<double>{0.4, 0.2, 0.1};
+  for (double l : cfls) {
+    SceneSpec s = damBase;
+    s.params.cfl = l;
+    add(damBreak("time_step", "CFL λ = " + fmt(l), s, tMax));
+  }
+
+  // 3. Equation of state: Tait against Müller's ideal gas.
+  for (int eos : {0, 1}) {
+    const std::string name = eos ? "ideal gas" : "Tait";
+    SceneSpec s = damBase;
+    s.params.eos = eos;
+    add(damBreak("eos", name, s, tMax));
+    SceneSpec t = presetSpec("hydrostatic");
+    t.params.spacing = o.quick ? 0.04 : 0.03;
+    t.params.eos = eos;
+    add(hydrostatic("eos", name, t, settle, average));
+  }
+
+  // 4. Neighbor search: our uniform grid against the paper's kd-tree (nanoflann), on the dam
+  // break and on pools of growing size (the paper: "negligibly slower" under 50k particles).
+  {
+    std::vector<Vec3f> grid;
+    SceneSpec s = damBase;
+    const long steps = o.quick ? 200 : 1000;
+    add(neighborSearch("grid", s, steps, 0, nullptr, &grid));
+    add(neighborSearch("kd-tree", s, steps, 1, &grid, nullptr));
+    for (long n : o.quick ? std::vector<long>{10000} : std::vector<long>{10000, 50000, 130000}) {
+      SceneSpec b = presetSpec("block", 1.0, n);
+      const long bsteps = o.quick ? 10 : 30;
+      add(neighborSearch("grid", b, bsteps, 0, nullptr, &grid));
+      add(neighborSearch("kd-tree", b, bsteps, 1, &grid, nullptr));
+    }
+  }
+
+  // 5. Sediment advection: donor–acceptor against the naive symmetric gradient.
+  for (auto& r : settling("donor–acceptor", 0)) add(r);
+  for (auto& r : settling("naive gradient", 1)) add(r);
+
+  // 6. Diffusion: the dimensionally consistent form against eq. (19) as printed.
+  add(diffusion("consistent", 0));
+  add(diffusion("as printed", 1));
+
+  markPareto(rows);
+  return rows;
+}
+
+void markPareto(std::vector<StudyRow>& rows) {
+  for (StudyRow& r : rows) {
+    r.pareto = r.status == "ok" && std::isfinite(r.error);
+    if (!r.pareto) continue;
+    for (const StudyRow& q : rows) {
+      if (&q == &r || q.study != r.study || q.reference != r.reference || q.status != "ok") continue;
+      const bool noWorse = q.cost <= r.cost && q.error <= r.error;
+      const bool better = q.cost < r.cost || q.error < r.error;
+      if (noWorse && better) r.pareto = false;
+    }
+  }
+}
+
+std::string studyCsv(const std::vector<StudyRow>& rows) {
+  auto quote = [](const std::string& s) {
+    std::string q = "\"";
+    for (char c : s) q += c == '"' ? std::string("\"\"") : std::string(1, c);
+    return q + "\"";
+  };
+  std::ostringstream o;
+  o << "study,reference,choice,error,wall_s,simulated_s,cost_s_per_unit,particles,pareto,status\n";
+  o << std::setprecision(9);
+  for (const StudyRow& r : rows)
+    o << r.study << "," << quote(r.reference) << "," << quote(r.choice) << "," << r.error << ","
+      << r.wall_seconds << "," << r.simulated_seconds << "," << r.cost << "," << r.particles
+      << "," << (r.pareto ? 1 : 0) << "," << quote(r.status) << "\n";
+  return o.str();
+}
+
+std::string studyMarkdown(const std::vector<StudyRow>& rows) {
+  std::ostringstream o;
+  std::string group;
+  for (const StudyRow& r : rows) {
+    const std::string g = r.study + " — " + r.reference;
+    if (g != group) {
+      group = g;
+      const bool frame = r.simulated_seconds == 0;
+      o << "\n### " << g << "\n\n| choice | error | wall s | "
+        << (frame ? "ms per frame" : "wall s per simulated s") << " | particles | Pareto |\n"
+        << "|---|---:|---:|---:|---:|:-:|\n";
+    }
+    const bool frame = r.simulated_seconds == 0;
+    o << "| " << r.choice << " | " << fmt(r.error) << " | " << fmt(r.wall_seconds, 3) << " | "
+      << fmt(frame ? r.cost * 1000 : r.cost, 3) << " | " << r.particles << " | "
+      << (r.pareto ? "●" : "") << " |";
+    if (r.status != "ok") o << " " << r.status.substr(0, 120);
+    o << "\n";
+  }
+  return o.str();
+}
+
+std::string studySvg(const std::vector<StudyRow>& rows, const std::string& study,
+                     const std::string& reference) {
+  std::vector<const StudyRow*> pts;
+  for (const StudyRow& r : rows)
+    if (r.study == study && r.reference == reference && std::isfinite(r.error) &&
+        std::isfinite(r.cost) && r.cost > 0)
+      pts.push_back(&r);
+  const double W = 560, H = 360, L = 70, R = 20, T = 30, B = 50;
+  double cmin = 1e300, cmax = -1e300, emin = 1e300, emax = -1e300;
+  const double floorErr = 1e-16;
+  for (const StudyRow* p : pts) {
+    cmin = std::min(cmin, p->cost), cmax = std::max(cmax, p->cost);
+    const double e = std::max(p->error, floorErr);
+    emin = std::min(emin, e), emax = std::max(emax, e);
+  }
+  if (pts.empty()) cmin = emin = 1, cmax = emax = 10;
+  // Whole decades around the data.
+  const double c0 = std::floor(std::log10(cmin)), c1 = std::max(std::ceil(std::log10(cmax)), c0 + 1);
+  const double e0 = std::floor(std::log10(emin)), e1 = std::max(std::ceil(std::log10(emax)), e0 + 1);
+  auto X = [&](double c) { return L + (std::log10(c) - c0) / (c1 - c0) * (W - L - R); };
+  auto Y = [&](double e) {
+    return H - B - (std::log10(std::max(e, floorErr)) - e0) / (e1 - e0) * (H - T - B);
+  };
+  const bool frame = !pts.empty() && pts.front()->simulated_seconds == 0;
+  std::ostringstream o;
+  o << std::setprecision(5);
+  o << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << W << "\" height=\"" << H
+    << "\" font-family=\"sans-serif\" font-size=\"11\">\n"
+    << "<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n"
+    << "<text x=\"" << L << "\" y=\"18\" font-size=\"13\">" << study << ": " << reference
+    << " error against cost</text>\n";
+  for (double d = c0; d <= c1; ++d)
+    o << "<line x1=\"" << X(std::pow(10, d)) << "\" y1=\"" << T << "\" x2=\"" << X(std::pow(10, d))
+      << "\" y2=\"" << H - B << "\" stroke=\"#ddd\"/><text x=\"" << X(std::pow(10, d))
+      << "\" y=\"" << H - B + 14 << "\" text-anchor=\"middle\">1e" << d << "</text>\n";
+  for (double d = e0; d <= e1; ++d)
+    o << "<line x1=\"" << L << "\" y1=\"" << Y(std::pow(10, d)) << "\" x2=\"" << W - R
+      << "\" y2=\"" << Y(std::pow(10, d)) << "\" stroke=\"#ddd\"/><text x=\"" << L - 6
+      << "\" y=\"" << Y(std::pow(10, d)) + 4 << "\" text-anchor=\"end\">1e" << d << "</text>\n";
+  o << "<text x=\"" << (L + W - R) / 2 << "\" y=\"" << H - 12 << "\" text-anchor=\"middle\">"
+    << (frame ? "seconds per frame" : "wall seconds per simulated second") << "</text>\n"
+    << "<text x=\"16\" y=\"" << (T + H - B) / 2 << "\" transform=\"rotate(-90 16 "
+    << (T + H - B) / 2 << ")\" text-anchor=\"middle\">relative error</text>\n";
+  std::vector<const StudyRow*> front;
+  for (const StudyRow* p : pts)
+    if (p->pareto) front.push_back(p);
+  std::sort(front.begin(), front.end(), [](auto a, auto b) { return a->cost < b->cost; });
+  if (front.size() > 1) {
+    o << "<polyline fill=\"none\" stroke=\"#c33\" stroke-width=\"1.5\" points=\"";
+    for (const StudyRow* p : front) o << X(p->cost) << "," << Y(p->error) << " ";
+    o << "\"/>\n";
+  }
+  for (const StudyRow* p : pts)
+    o << "<circle cx=\"" << X(p->cost) << "\" cy=\"" << Y(p->error) << "\" r=\"4\" fill=\""
+      << (p->pareto ? "#c33" : "white") << "\" stroke=\"#c33\"/><text x=\"" << X(p->cost) + 6
+      << "\" y=\"" << Y(p->error) - 6 << "\">" << p->choice << "</text>\n";
+  o << "</svg>\n";
+  return o.str();
+}
+
+std::string checkStudy(const std::vector<StudyRow>& rows, const std::vector<std::string>& studies) {
+  for (const std::string& s : studies) {
+    size_t n = 0;
+    for (const StudyRow& r : rows) n += r.study == s;
+    if (n < 2) return "study '" + s + "' has " + std::to_string(n) + " rows (at least 2 expected)";
+  }
+  for (const StudyRow& r : rows) {
+    const std::string what = r.study + " / " + r.reference + " / " + r.choice;
+    if (r.status != "ok") continue;  // an unstable run is a finding, reported with its reason
+    if (!std::isfinite(r.error) || r.error < 0) return what + ": error is not a finite number";
+    if (!(r.wall_seconds > 0) || !std::isfinite(r.cost)) return what + ": no time recorded";
+  }
+  return "";
+}
+
+}  // namespace scour

@@ -1,0 +1,61 @@
+// The stress runner's own checks: they must catch a blow-up, and the energy ledger must account
+// for what sources bring in.
+#include <catch2/catch.hpp>
+
+#include "study/stress.h"
+
+using namespace scour;
+
+TEST_CASE("stress: a step far beyond the CFL limit is caught as an energy blow-up", "[stress]") {
+  StressScene s = stressScene("dambreak-wall");
+  s.spec.params.fixed_dt = 0.004;  // 16× the CFL step of this scene
+  s.duration = 0.3;
+  const StressResult r = runStress(s);
+  REQUIRE_FALSE(r.pass);
+  CHECK(!r.failure.empty());
+  CHECK(r.steps < 75);  // caught at the step it happened, not at the end
+}
+
+TEST_CASE("stress: the ledger counts a source's energy, so a jet's energy stays bounded",
+          "[stress]") {
+  StressScene s = stressScene("waterfall-drop");
+  s.duration = 0.25;
+  const StressResult r = runStress(s);
+  REQUIRE(r.pass);
+  CHECK(r.emitted > 100);  // the jet brought particles (and their energy) in
+  CHECK(r.lost == 0);
+  // Falling 1 m the jet turns potential energy into kinetic: bounded, not created.
+  CHECK(r.energy_excess <= 0.01);
+}
+
+TEST_CASE("stress: nothing is placed inside a closed wall's contact zone", "[stress]") {
+  StressScene s = stressScene("edge-source");
+  s.duration = 0.1;
+  const Scene built = buildScene(s.spec);
+  World w(built.desc);
+  // Right after a step, the particles it emitted stand where they were placed (emission follows
+  // the drift): none of them within Δs/2 of a wall.
+  const double margin = 0.5 * w.params().spacing;
+  uint32_t seen = 0;
+  long fresh = 0;
+  for (int k = 0; k < 100; ++k) {
+    w.step();
+    const Fluid& f = w.fluid();
+    uint32_t top = seen;
+    for (size_t i = 0; i < f.size(); ++i) {
+      if (f.id[i] < seen) continue;
+      ++fresh;
+      top = std::max(top, f.id[i] + 1);
+      CHECK(f.x[i].x() >= w.terrain().x0() + margin * (1 - 1e-5));
+      CHECK(f.x[i].z() >= w.terrain().z0() + margin * (1 - 1e-5));
+    }
+    seen = top;
+  }
+  CHECK(fresh == w.emitted());
+  CHECK(w.blockedSlots() > 0);  // the slots nearer the walls were refused
+}
+
+TEST_CASE("stress: an unknown scene is refused with the valid names", "[stress]") {
+  REQUIRE_THROWS_WITH(stressScene("nope"),
+                      Catch::Contains("unknown stress scene 'nope'") && Catch::Contains("cliffs"));
+}
