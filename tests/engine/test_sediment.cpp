@@ -14,6 +14,20 @@ double totalSediment(const World& w) {
   for (double v : w.fluid().sed) s += v;
   return s;
 }
+/// Sediment-weighted centre of the particles.
+Eigen::Vector3d sedimentCentroid(const World& w) {
+  const Fluid& f = w.fluid();
+  Eigen::Vector3d c = Eigen::Vector3d::Zero();
+  for (size_t i = 0; i < f.size(); ++i) c += f.sed[i] * f.x[i].cast<double>();
+  return c / totalSediment(w);
+}
+/// Sediment-weighted variance about c0, per axis.
+Eigen::Vector3d sedimentVariance(const World& w, const Eigen::Vector3d& c0) {
+  const Fluid& f = w.fluid();
+  Eigen::Vector3d v = Eigen::Vector3d::Zero();
+  for (size_t i = 0; i < f.size(); ++i) v += f.sed[i] * (f.x[i].cast<double>() - c0).cwiseAbs2();
+  return v / totalSediment(w);
+}
 }  // namespace
 
 TEST_CASE("settling moves sediment down at the settling speed", "[sediment][settling]") {
@@ -62,16 +76,8 @@ TEST_CASE("diffusion spreads a pulse with variance 2·D·t per axis", "[sediment
   World w(s.desc);
   const double D = w.params().diffusion, h = w.params().support();
   const double s0 = totalSediment(w);
-  const Fluid& f = w.fluid();
-  Eigen::Vector3d c0 = Eigen::Vector3d::Zero();
-  for (size_t i = 0; i < f.size(); ++i) c0 += f.sed[i] * f.x[i].cast<double>();
-  c0 /= s0;
-  auto variance = [&] {
-    Eigen::Vector3d v = Eigen::Vector3d::Zero();
-    for (size_t i = 0; i < f.size(); ++i)
-      v += f.sed[i] * (f.x[i].cast<double>() - c0).cwiseAbs2();
-    return Eigen::Vector3d(v / totalSediment(w));
-  };
+  const Eigen::Vector3d c0 = sedimentCentroid(w);
+  auto variance = [&] { return sedimentVariance(w, c0); };
   // Once the pulse covers a few h (σ ≈ 1.5 h), measure the growth over the next stretch.
   while (variance().mean() < std::pow(1.5 * h, 2)) w.step();
   const double t1 = w.time();
@@ -83,10 +89,7 @@ TEST_CASE("diffusion spreads a pulse with variance 2·D·t per axis", "[sediment
     CHECK(std::abs(growth[a] / (2 * D) - 1.0) < 0.10);
   }
   // Symmetric: the centroid stays put and the three axes agree.
-  Eigen::Vector3d c = Eigen::Vector3d::Zero();
-  for (size_t i = 0; i < f.size(); ++i) c += f.sed[i] * f.x[i].cast<double>();
-  c /= totalSediment(w);
-  CHECK((c - c0).norm() < 1e-5);  // float lattice positions: ~1e-6 Δs
+  CHECK((sedimentCentroid(w) - c0).norm() < 1e-5);  // float lattice positions: ~1e-6 Δs
   CHECK(std::abs(growth[0] - growth[2]) < 1e-6 * growth[0]);
   CHECK(std::abs(totalSediment(w) - s0) <= 1e-12 * s0);
   WARN("diffusion: dσ²/dt / 2D = " << growth.transpose() / (2 * D));
@@ -154,16 +157,8 @@ TEST_CASE("eq. (19) as printed conserves sediment but diffuses at 6e-5 × 2·D",
   World w(s.desc);
   const double D = w.params().diffusion;
   const double s0 = totalSediment(w);
-  const Fluid& f = w.fluid();
-  Eigen::Vector3d c0 = Eigen::Vector3d::Zero();
-  for (size_t i = 0; i < f.size(); ++i) c0 += f.sed[i] * f.x[i].cast<double>();
-  c0 /= s0;
-  auto variance = [&] {
-    Eigen::Vector3d v = Eigen::Vector3d::Zero();
-    for (size_t i = 0; i < f.size(); ++i)
-      v += f.sed[i] * (f.x[i].cast<double>() - c0).cwiseAbs2();
-    return Eigen::Vector3d(v / totalSediment(w));
-  };
+  const Eigen::Vector3d c0 = sedimentCentroid(w);
+  auto variance = [&] { return sedimentVariance(w, c0); };
   // The same stretch of time as the consistent form's test, from the start.
   const Eigen::Vector3d v0 = variance();
   while (w.time() < 0.4) {
