@@ -27,6 +27,9 @@ expect "outside the valid range" run dambreak --headless --steps 5 --set fluid.s
 expect "--particles" bench block --particles -3
 expect "--scale" run dambreak --headless --steps 5 --scale 0 --out "$tmp/j"
 expect "cannot create directory" run dambreak --headless --steps 5 --out /proc/nope/x
+expect "unknown stress scene 'nope' (valid: waterfall-drop" stress --scene nope --out "$tmp/k"
+expect "'time.cfl': 0.9 is outside the valid range [0.01, 0.4]" stress --scene cliffs --set time.cfl=0.9 --out "$tmp/l"
+expect "--threads" study --threads 0 --out "$tmp/m"
 left=$(find "$tmp" -mindepth 1 | head -5)
 if [ -n "$left" ]; then echo "FAIL: files left behind: $left"; fail=1; fi
 exit $fail
