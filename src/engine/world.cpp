@@ -670,7 +670,8 @@ void getVec(std::istream& in, std::vector<T>& v, const char* what, uint64_t expe
 }
 
 constexpr uint32_t kStateTag = 0x444C5257;  // "WRLD"
-// Version 2 adds the sediment defects (naive advection); version 1 states load with none.
+// Version 2 adds the sediment defects (naive advection) and the last density rate (the next
+// Δt's bound); version 1 states load with none.
 constexpr uint32_t kStateVersion = 2;
 
 }  // namespace
@@ -692,6 +693,7 @@ void World::saveState(std::ostream& o) const {
   put(o, paintedTotal_);
   put(o, inv_);
   put(o, defects_);
+  put(o, densityRate_);
 }
 
 void World::loadState(std::istream& in) {
@@ -743,7 +745,8 @@ void World::loadState(std::istream& in) {
   get(in, paintedTotal_, "counters");
   get(in, inv_, "invariants");
   defects_ = {};
-  if (version >= 2) get(in, defects_, "sediment defects");
+  densityRate_ = 0;
+  if (version >= 2) get(in, defects_, "sediment defects"), get(in, densityRate_, "density rate");
   f.scratch.clear();
   f_ = std::move(f);
   vhat_ = std::move(vhat);

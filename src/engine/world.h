@@ -168,6 +168,8 @@ class World {
   /// open walls) [J]. Without dissipation mechanicalEnergy() would equal it; it may only fall
   /// below. Not part of saveState: after loadState it counts from the loaded state.
   double energyLedger() const { return energyLedger_; }
+  /// max |dρ/dt|/ρ of the last step (continuity density), which bounds the next Δt [1/s].
+  double densityRate() const { return densityRate_; }
 
   /// A budget further than this from its initial value stops the run (relative).
   static constexpr double kSoilTolerance = 1e-6;

@@ -2,6 +2,8 @@
 // for what sources bring in.
 #include <catch2/catch.hpp>
 
+#include <sstream>
+
 #include "study/stress.h"
 
 using namespace scour;
@@ -58,4 +60,29 @@ TEST_CASE("stress: nothing is placed inside a closed wall's contact zone", "[str
 TEST_CASE("stress: an unknown scene is refused with the valid names", "[stress]") {
   REQUIRE_THROWS_WITH(stressScene("nope"),
                       Catch::Contains("unknown stress scene 'nope'") && Catch::Contains("cliffs"));
+}
+
+TEST_CASE("stress: a run resumed while the density-rate bound limits Δt steps on bit for bit",
+          "[stress][checkpoint]") {
+  const StressScene s = stressScene("dambreak-wall");
+  const WorldDesc desc = buildScene(s.spec).desc;
+  World a(desc);
+  const SimParams& p = a.params();
+  const double acoustic = p.cfl * p.support() / p.sound_speed;  // the CFL bound at rest
+  // Run into the surge until the density rate is what limits the next step.
+  while (!(a.densityRate() > 0 && p.density_cfl / a.densityRate() < acoustic)) {
+    a.step();
+    REQUIRE(a.time() < 1.0);
+  }
+  std::stringstream state;
+  a.saveState(state);
+  World b(desc);
+  b.loadState(state);
+  REQUIRE(b.densityRate() == a.densityRate());
+  for (int k = 0; k < 50; ++k) {
+    a.step();
+    b.step();
+    REQUIRE(b.lastDt() == a.lastDt());
+  }
+  CHECK(b.stateHash() == a.stateHash());
 }
