@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace scour {
 
@@ -55,6 +56,17 @@ double pointTriangleDistance(const Eigen::Vector3d& p, const Eigen::Vector3d& a,
     return (p - (b + (d4 - d3) / ((d4 - d3) + (d5 - d6)) * (c - b))).norm();
   const double den = 1.0 / (va + vb + vc);
   return (p - (a + ab * (vb * den) + ac * (vc * den))).norm();
+}
+
+double Heightfield::distanceToSurface(const Eigen::Vector3d& p) const {
+  const int ci = std::clamp(int(std::floor((p.x() - x0_) / dx_)), 0, nx_ - 2);
+  const int ck = std::clamp(int(std::floor((p.z() - z0_) / dz_)), 0, nz_ - 2);
+  double best = std::numeric_limits<double>::infinity();
+  for (int k = std::max(ck - 1, 0); k <= std::min(ck + 1, nz_ - 2); ++k)
+    for (int i = std::max(ci - 1, 0); i <= std::min(ci + 1, nx_ - 2); ++i)
+      for (int t = 0; t < 2; ++t)
+        best = std::min(best, distanceToTriangle(2 * (k * (nx_ - 1) + i) + t, p));
+  return best;
 }
 
 std::array<std::array<int, 2>, 3> Heightfield::triangleVertices(int tri) const {

@@ -55,6 +55,9 @@ class Heightfield {
     const auto [a, b, c] = triangleCorners(tri);
     return pointTriangleDistance(p, a, b, c);
   }
+  /// Distance from p to the surface: the nearest of the triangles of the 3 × 3 cells around p's
+  /// cell (enough for a point within a cell of the surface) [m].
+  double distanceToSurface(const Eigen::Vector3d& p) const;
   /// The three corners (x, h, z) of a triangle.
   std::array<Eigen::Vector3d, 3> triangleCorners(int tri) const;
   /// Vertex indices (i, k) of a triangle's corners, in the order of triangleCorners.

@@ -167,8 +167,9 @@ double integrateDensity(const SphConstants& k, const NeighborLists& nbrs, const 
       wall -= k.rho0 * k.planeDensity(d) * vi.cast<double>().dot(nrm);
     });
     const double rate = double(div) + double(diffusion * diff) + wall;
-    maxRate = std::max(maxRate, std::abs(rate) / rhoi);
     double rho = rhoi + dt * rate;
+    // A particle held at the floor below is not changing density: it does not bound Δt.
+    if (rho >= 0.5 * k.rho0) maxRate = std::max(maxRate, std::abs(rate) / rhoi);
     // Floor at ρ0/2: below ρ0 the pressure is 0 anyway, but a splash particle leaving a wall
     // keeps losing continuity density through the wall term and would reach 0 or below, where
     // ρ0/ρ (wall support) and m/ρ (viscosity) blow up (docs/model.md; `scour stress`).

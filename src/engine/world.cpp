@@ -217,7 +217,7 @@ void World::computeAccelerations() {
       // f_.v holds v(t + Δt/2) here
       densityRate_ = integrateDensity(k_, nbrs_, hf_, dom_, f_.v, dt_, f_);
     else
-      computeDensity(k_, nbrs_, hf_, dom_, f_);
+      computeDensity(k_, nbrs_, hf_, dom_, f_), densityRate_ = 0;  // no continuity rate to bound Δt
   });
   timed(Pass::kForces, [&] { computeForces(k_, nbrs_, vhat_, f_); });
   timed(Pass::kBoundaryForces, [&] { applyBoundaryForces(k_, hf_, dom_, vhat_, f_); });
@@ -256,7 +256,7 @@ bool World::place(const Vec3f& pos, const Vec3f& vel, double clearance) {
   // Never inside a closed wall's contact zone: the wall's spring would hand the new particle
   // energy no source supplied (`scour stress`, edge-source and cloudburst).
   if (dom_.walls) {
-    const double m = wallMargin() * (1 - 1e-6);
+    const double m = wallMargin() - 1e-4 * p_.spacing;  // float rounding of a drop at the margin
     if (pos.x() < hf_.x0() + m || pos.x() > hf_.xMax() - m || pos.z() < hf_.z0() + m ||
         pos.z() > hf_.zMax() - m)
       return false;
@@ -318,12 +318,15 @@ void World::rain() {
       while (r.pending >= drop) {
         r.pending -= drop;
         const auto [u, w] = RainState::point(rn.seed, r.drawn++);
-        double x = rn.lo_x + u * (rn.hi_x - rn.lo_x), z = rn.lo_z + w * (rn.hi_z - rn.lo_z);
-        if (dom_.walls) {  // a drop falls clear of the closed walls' contact zone
+        // With closed walls the drops fall on the rectangle less the walls' contact zone (the
+        // same volume, spread uniformly over the rest).
+        double lx = rn.lo_x, hx = rn.hi_x, lz = rn.lo_z, hz = rn.hi_z;
+        if (dom_.walls) {
           const double m = wallMargin();
-          x = std::clamp(x, hf_.x0() + m, hf_.xMax() - m);
-          z = std::clamp(z, hf_.z0() + m, hf_.zMax() - m);
+          lx = std::max(lx, hf_.x0() + m), hx = std::min(hx, hf_.xMax() - m);
+          lz = std::max(lz, hf_.z0() + m), hz = std::min(hz, hf_.zMax() - m);
         }
+        const double x = lx + u * (hx - lx), z = lz + w * (hz - lz);
         const double y = hf_.heightAt(x, z) + std::max(rn.drop_height, p_.spacing);
         const bool placed = place(Vec3f(float(x), float(y), float(z)), Vec3f(0, -float(rn.drop_speed), 0));
         ++(placed ? r.emitted : r.blocked);
@@ -367,6 +370,13 @@ void World::setParams(const SimParams& q) {
   // run depend on when it happened (and a study compares whole runs), so it needs a reset.
   require(q.neighbor_search == p_.neighbor_search,
           "engine.neighbor_search changes with a reset");
+  // A new g changes every particle's potential energy: the ledger follows (what the fluid has been
+  // given is counted in the new g from here on).
+  if (q.gravity != p_.gravity) {
+    double sumY = 0;
+    for (const Vec3f& x : f_.x) sumY += double(x.y());
+    energyLedger_ += k_.mass * (q.gravity - p_.gravity) * sumY;
+  }
   p_ = resolve(q);
   k_ = SphConstants(p_);
   if (!fx_.surface_tension) k_.kappa = 0;
@@ -555,9 +565,11 @@ void World::checkInvariants() {
         continue;
       }
       // Depth across the terrain (along its normal): the vertical one would call a particle
-      // touching a near-vertical cliff face deep inside it.
+      // touching a near-vertical cliff face deep inside it. Below a steep triangle (a riser
+      // narrower than a cell) its plane is no measure: the distance to the surface around.
       const SurfacePoint sp = hf_.surface(x.x(), x.z());
       double depth = (sp.height - x.y()) * sp.normal.y() / ds;
+      if (depth > 0 && sp.normal.y() < 0.5) depth = hf_.distanceToSurface(x.cast<double>()) / ds;
       if (depth > tdeep || (depth == tdeep && long(i) < tat)) tdeep = depth, tat = long(i);
       if (dom_.walls && (x.x() < hf_.x0() - slack || x.x() > hf_.xMax() + slack ||
                          x.z() < hf_.z0() - slack || x.z() > hf_.zMax() + slack))
@@ -670,9 +682,9 @@ void getVec(std::istream& in, std::vector<T>& v, const char* what, uint64_t expe
 }
 
 constexpr uint32_t kStateTag = 0x444C5257;  // "WRLD"
-// Version 2 adds the sediment defects (naive advection) and the last density rate (the next
-// Δt's bound); version 1 states load with none.
-constexpr uint32_t kStateVersion = 2;
+// Version 2 adds the sediment defects (naive advection), version 3 the last density rate (the
+// next Δt's bound); older states load with none.
+constexpr uint32_t kStateVersion = 3;
 
 }  // namespace
 
@@ -701,10 +713,9 @@ void World::loadState(std::istream& in) {
   get(in, tag, "header");
   get(in, version, "header");
   if (tag != kStateTag) throw std::runtime_error("not a Scour world state");
-  if (version != kStateVersion && version != 1)
+  if (version < 1 || version > kStateVersion)
     throw std::runtime_error("world state version " + std::to_string(version) +
-                             " is not the version " + std::to_string(kStateVersion) +
-                             " this build reads");
+                             ", this build reads versions 1 to " + std::to_string(kStateVersion));
   Fluid f;
   getVec(in, f.x, "positions");
   const uint64_t n = f.x.size();
@@ -746,7 +757,8 @@ void World::loadState(std::istream& in) {
   get(in, inv_, "invariants");
   defects_ = {};
   densityRate_ = 0;
-  if (version >= 2) get(in, defects_, "sediment defects"), get(in, densityRate_, "density rate");
+  if (version >= 2) get(in, defects_, "sediment defects");
+  if (version >= 3) get(in, densityRate_, "density rate");
   f.scratch.clear();
   f_ = std::move(f);
   vhat_ = std::move(vhat);

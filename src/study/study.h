@@ -3,7 +3,8 @@
 // for time, runs a validation scene with a known answer for each value, and records the error
 // against that answer beside the wall time per simulated second. The errors (docs/accuracy.md):
 //
-//   dam-break front     worst |Z_sim − Z| / Z over Martin & Moyce's points with 1.2 ≤ T ≤ 5
+//   dam-break front     worst |Z_sim − Z| / Z over Martin & Moyce's points with 1.2 ≤ T ≤ 5,
+//                       Z_sim the water's edge (foremost centre + Δs/2) over a
 //   hydrostatic         worst |p − ρ0 g (H − y)| / (ρ0 g (H − y)) over the layers of the lower
 //                       80 % of the column, averaged over the last part of the run
 //   settling speed      |v_centroid / |v_s| − 1|, v_s of eq. (17)
