@@ -48,6 +48,21 @@ void deleteTextures(std::initializer_list<GLuint*> ts) {
     if (*t) glDeleteTextures(1, t), *t = 0;
 }
 
+void deleteFramebuffers(std::initializer_list<GLuint*> fs) {
+  for (GLuint* f : fs)
+    if (*f) glDeleteFramebuffers(1, f), *f = 0;
+}
+
+// A framebuffer with these (attachment point, texture) pairs, checked complete.
+GLuint framebuffer(std::initializer_list<std::pair<GLenum, GLuint>> attachments, const char* what) {
+  GLuint f = 0;
+  glCreateFramebuffers(1, &f);
+  for (const auto& [point, texture] : attachments) glNamedFramebufferTexture(f, point, texture, 0);
+  if (glCheckNamedFramebufferStatus(f, GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
+    throw GlError(std::string("renderer: incomplete ") + what + " framebuffer");
+  return f;
+}
+
 void setMatrix(const Program& p, const char* name, const Eigen::Matrix4f& m) {
   glProgramUniformMatrix4fv(p.id(), p.location(name), 1, GL_FALSE, m.data());
 }
@@ -107,8 +122,7 @@ Renderer::Renderer(int width, int height)
 Renderer::~Renderer() {
   deleteTextures({&heights_, &change_, &backColour_, &backDepth_, &finalColour_, &finalDepth_, &receiver_,
                   &receiverDepth_, &waterPos_, &waterNormal_, &waterLightDepth_, &caustic_, &sky_});
-  for (GLuint* f : {&backFbo_, &finalFbo_, &receiverFbo_, &waterLightFbo_, &causticFbo_})
-    if (*f) glDeleteFramebuffers(1, f);
+  deleteFramebuffers({&backFbo_, &finalFbo_, &receiverFbo_, &waterLightFbo_, &causticFbo_});
   for (GLuint* v : {&emptyVao_, &waterVao_, &particleVao_})
     if (*v) glDeleteVertexArrays(1, v);
   if (particleBuffer_) glDeleteBuffers(1, &particleBuffer_);
@@ -116,49 +130,37 @@ Renderer::~Renderer() {
 
 void Renderer::makeTargets() {
   deleteTextures({&backColour_, &backDepth_, &finalColour_, &finalDepth_});
-  for (GLuint* f : {&backFbo_, &finalFbo_})
-    if (*f) glDeleteFramebuffers(1, f);
+  deleteFramebuffers({&backFbo_, &finalFbo_});
   backColour_ = texture2D(GL_RGBA8, width_, height_, GL_LINEAR);
   backDepth_ = texture2D(GL_DEPTH_COMPONENT32F, width_, height_, GL_NEAREST);
   finalColour_ = texture2D(GL_RGBA8, width_, height_, GL_LINEAR);
   finalDepth_ = texture2D(GL_DEPTH_COMPONENT32F, width_, height_, GL_NEAREST);
-  glCreateFramebuffers(1, &backFbo_);
-  glNamedFramebufferTexture(backFbo_, GL_COLOR_ATTACHMENT0, backColour_, 0);
-  glNamedFramebufferTexture(backFbo_, GL_DEPTH_ATTACHMENT, backDepth_, 0);
-  glCreateFramebuffers(1, &finalFbo_);
-  glNamedFramebufferTexture(finalFbo_, GL_COLOR_ATTACHMENT0, finalColour_, 0);
-  glNamedFramebufferTexture(finalFbo_, GL_DEPTH_ATTACHMENT, finalDepth_, 0);
-  for (GLuint f : {backFbo_, finalFbo_})
-    if (glCheckNamedFramebufferStatus(f, GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
-      throw GlError("renderer: incomplete framebuffer");
+  backFbo_ = framebuffer({{GL_COLOR_ATTACHMENT0, backColour_}, {GL_DEPTH_ATTACHMENT, backDepth_}},
+                         "terrain");
+  finalFbo_ = framebuffer({{GL_COLOR_ATTACHMENT0, finalColour_}, {GL_DEPTH_ATTACHMENT, finalDepth_}},
+                          "picture");
 }
 
 void Renderer::makeLightTargets(int size) {
   if (size == lightSize_) return;
   lightSize_ = size;
   deleteTextures({&receiver_, &receiverDepth_, &waterPos_, &waterNormal_, &waterLightDepth_, &caustic_});
-  for (GLuint* f : {&receiverFbo_, &waterLightFbo_, &causticFbo_})
-    if (*f) glDeleteFramebuffers(1, f);
+  deleteFramebuffers({&receiverFbo_, &waterLightFbo_, &causticFbo_});
   receiver_ = texture2D(GL_RGBA32F, size, size, GL_NEAREST);
   receiverDepth_ = texture2D(GL_DEPTH_COMPONENT32F, size, size, GL_NEAREST);
   waterPos_ = texture2D(GL_RGBA32F, size, size, GL_NEAREST);
   waterNormal_ = texture2D(GL_RGBA16F, size, size, GL_NEAREST);
   waterLightDepth_ = texture2D(GL_DEPTH_COMPONENT32F, size, size, GL_NEAREST);
   caustic_ = texture2D(GL_R32F, size, size, GL_LINEAR);
-  glCreateFramebuffers(1, &receiverFbo_);
-  glNamedFramebufferTexture(receiverFbo_, GL_COLOR_ATTACHMENT0, receiver_, 0);
-  glNamedFramebufferTexture(receiverFbo_, GL_DEPTH_ATTACHMENT, receiverDepth_, 0);
-  glCreateFramebuffers(1, &waterLightFbo_);
-  glNamedFramebufferTexture(waterLightFbo_, GL_COLOR_ATTACHMENT0, waterPos_, 0);
-  glNamedFramebufferTexture(waterLightFbo_, GL_COLOR_ATTACHMENT1, waterNormal_, 0);
-  glNamedFramebufferTexture(waterLightFbo_, GL_DEPTH_ATTACHMENT, waterLightDepth_, 0);
+  receiverFbo_ = framebuffer(
+      {{GL_COLOR_ATTACHMENT0, receiver_}, {GL_DEPTH_ATTACHMENT, receiverDepth_}}, "receiver");
+  waterLightFbo_ = framebuffer({{GL_COLOR_ATTACHMENT0, waterPos_},
+                                {GL_COLOR_ATTACHMENT1, waterNormal_},
+                                {GL_DEPTH_ATTACHMENT, waterLightDepth_}},
+                               "water-from-the-sun");
   const GLenum both[2] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
   glNamedFramebufferDrawBuffers(waterLightFbo_, 2, both);
-  glCreateFramebuffers(1, &causticFbo_);
-  glNamedFramebufferTexture(causticFbo_, GL_COLOR_ATTACHMENT0, caustic_, 0);
-  for (GLuint f : {receiverFbo_, waterLightFbo_, causticFbo_})
-    if (glCheckNamedFramebufferStatus(f, GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
-      throw GlError("renderer: incomplete caustics framebuffer");
+  causticFbo_ = framebuffer({{GL_COLOR_ATTACHMENT0, caustic_}}, "caustics");
 }
 
 void Renderer::makeSky() {

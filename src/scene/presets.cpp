@@ -63,6 +63,13 @@ std::vector<uint8_t> floodedVertices(const Heightfield& hf, const WaterBlock& b)
 
 }  // namespace
 
+void damBreakTank(SceneSpec& s, double a, double spacing, double tank) {
+  s.params.spacing = spacing;
+  const double depth = 6 * spacing;
+  s.terrain = flatTerrain(tank, depth, a / 4);
+  s.blocks.push_back({{0, 0, 0}, {a, 2 * a, depth}});
+}
+
 Scene buildScene(const SceneSpec& spec) {
   Scene s;
   s.spec = spec;
@@ -121,19 +128,14 @@ SceneSpec named(const std::string& name) {
 }
 
 SceneSpec dambreak(double scale) {
-  // Martin & Moyce's column: width a = 2.25 in, height 2a, against the tank's left wall (x = 0),
-  // flowing along +x over a dry floor. The tank is 10a long; the slab is six particles deep in z
-  // (the experiment is two-dimensional), held by walls.
+  // Martin & Moyce's column: width a = 2.25 in, in a tank 10a long.
   const double a = 0.05715;
   SceneSpec s = named("dambreak");
   SimParams& p = s.params;
   const int n = std::max(4, int(std::round(16 * std::cbrt(scale))));
-  p.spacing = a / n;
+  damBreakTank(s, a, a / n, 10 * a);
   p.sound_speed = 20.0;  // > 10 × √(2 g · 2a) ≈ 15 m/s
   p.viscosity = 5e-4;
-  const double depth = 6 * p.spacing;
-  s.terrain = flatTerrain(10 * a, depth, a / 4);
-  s.blocks.push_back({{0, 0, 0}, {a, 2 * a, depth}});
   return s;
 }
 

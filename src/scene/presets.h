@@ -132,6 +132,11 @@ Heightfield buildTerrain(const TerrainSpec& t);
 /// marks on the nearest particle.
 Scene buildScene(const SceneSpec& spec);
 
+/// A dam break: a column of water a wide and 2a high against the tank's left wall (x = 0),
+/// flowing along +x over a flat floor `tank` long, in a slab six particles deep held by walls
+/// (Martin & Moyce's experiment is two-dimensional). Sets the spacing, terrain and water block.
+void damBreakTank(SceneSpec& s, double a, double spacing, double tank);
+
 /// presetSpec + buildScene.
 inline Scene makePreset(const std::string& name, double scale = 1.0, long particles = 0) {
   return buildScene(presetSpec(name, scale, particles));

@@ -55,13 +55,9 @@ StressScene waterfallDrop() {
 // at full speed and climbs it.
 StressScene dambreakWall() {
   StressScene s = named("dambreak-wall", "a dam break slamming into the tank's far wall", 1.0);
-  SceneSpec& sp = s.spec;
   const double a = 0.1;
-  sp.params.spacing = a / 14;
-  sp.params.sound_speed = 25.0;
-  const double depth = 6 * sp.params.spacing;
-  sp.terrain = flatTerrain(2.5 * a, depth, a / 4);
-  sp.blocks.push_back({{0, 0, 0}, {a, 2 * a, depth}});
+  damBreakTank(s.spec, a, a / 14, 2.5 * a);
+  s.spec.params.sound_speed = 25.0;
   return s;
 }
 
@@ -173,16 +169,13 @@ StressScene parameterJump() {
 // λ = 1, λ_f = 1 it gains 6 % within 50 steps: the table's limits are these.)
 StressScene cflLimit() {
   StressScene s = named("cfl-limit", "a dam break at the largest CFL and force factors", 0.8);
-  SceneSpec& sp = s.spec;
   const double a = 0.1;
-  sp.params.spacing = a / 12;
-  sp.params.sound_speed = 20.0;
-  sp.params.max_dt = 0.01;
-  sp.params.cfl = findParam("time.cfl")->max;
-  sp.params.force_cfl = findParam("time.force_cfl")->max;
-  const double depth = 6 * sp.params.spacing;
-  sp.terrain = flatTerrain(4 * a, depth, a / 4);
-  sp.blocks.push_back({{0, 0, 0}, {a, 2 * a, depth}});
+  damBreakTank(s.spec, a, a / 12, 4 * a);
+  SimParams& p = s.spec.params;
+  p.sound_speed = 20.0;
+  p.max_dt = 0.01;
+  p.cfl = findParam("time.cfl")->max;
+  p.force_cfl = findParam("time.force_cfl")->max;
   return s;
 }
 

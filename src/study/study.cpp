@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "scene/presets.h"
+#include "study/measures.h"
 
 namespace scour {
 
@@ -130,12 +131,6 @@ StudyRow hydrostatic(const std::string& study, const std::string& choice, SceneS
   return row(study, "hydrostatic pressure", choice, worst, run, w);
 }
 
-double suspended(const World& w) {
-  double s = 0;
-  for (double v : w.fluid().sed) s += v;
-  return s;
-}
-
 // The settling lattice: the centroid's speed against |v_s| (least squares away from the top and
 // the floor), and the sediment the scheme made or lost, relative to what there was.
 std::vector<StudyRow> settling(const std::string& choice, int advection) {
@@ -143,28 +138,19 @@ std::vector<StudyRow> settling(const std::string& choice, int advection) {
   spec.params.advection = advection;
   World w(buildScene(spec).desc);
   const double vs = w.params().settlingSpeed(), h = w.params().support();
-  const double s0 = suspended(w);
+  const double s0 = suspendedSediment(w);
   const Fluid& f = w.fluid();
   float yTop = 0;
   for (size_t i = 0; i < f.size(); ++i)
     if (f.sed[i] > 0) yTop = f.x[i].y();
-  auto centroid = [&] {
-    double sy = 0, s = 0;
-    for (size_t i = 0; i < f.size(); ++i) sy += f.sed[i] * f.x[i].y(), s += f.sed[i];
-    return sy / s;
-  };
+  auto centroid = [&] { return sedimentCentroid(w).y(); };
   std::vector<std::pair<double, double>> samples;
   double budget = 0;
   const Run run = drive(w, [&] { return centroid() <= 3 * h || w.time() > 60.0; }, [&] {
-    budget = std::max(budget, std::abs(suspended(w) - s0) / s0);
+    budget = std::max(budget, std::abs(suspendedSediment(w) - s0) / s0);
     if (centroid() < yTop - h) samples.emplace_back(w.time(), centroid());
   });
-  double speed = 0;
-  if (samples.size() > 2) {
-    double st = 0, sy = 0, stt = 0, sty = 0, n = double(samples.size());
-    for (auto [t, y] : samples) st += t, sy += y, stt += t * t, sty += t * y;
-    speed = -(n * sty - st * sy) / (n * stt - st * st);
-  }
+  const double speed = samples.size() > 2 ? -leastSquaresSlope(samples) : 0.0;
   return {row("advection", "settling speed", choice, std::abs(speed / vs - 1.0), run, w),
           row("advection", "soil budget", choice, budget, run, w)};
 }
@@ -176,16 +162,8 @@ StudyRow diffusion(const std::string& choice, int form) {
   spec.params.diffusion_form = form;
   World w(buildScene(spec).desc);
   const double D = w.params().diffusion, h = w.params().support();
-  const Fluid& f = w.fluid();
-  const double s0 = suspended(w);
-  Eigen::Vector3d c0 = Eigen::Vector3d::Zero();
-  for (size_t i = 0; i < f.size(); ++i) c0 += f.sed[i] * f.x[i].cast<double>();
-  c0 /= s0;
-  auto variance = [&] {
-    Eigen::Vector3d v = Eigen::Vector3d::Zero();
-    for (size_t i = 0; i < f.size(); ++i) v += f.sed[i] * (f.x[i].cast<double>() - c0).cwiseAbs2();
-    return Eigen::Vector3d(v / suspended(w));
-  };
+  const Eigen::Vector3d c0 = sedimentCentroid(w);
+  auto variance = [&] { return sedimentVariance(w, c0); };
   double t1 = -1;
   Eigen::Vector3d v1 = Eigen::Vector3d::Zero();
   const Run run = drive(
@@ -238,10 +216,6 @@ std::vector<StudyRow> runEngineStudies(const StudyOptions& o) {
     rows.push_back(std::move(r));
   };
   const double tMax = 5.0;  // Martin & Moyce's points up to T = 5
-  auto dam = [&](double scale) {
-    SceneSpec s = presetSpec("dambreak", scale);
-    return s;
-  };
   auto damLabel = [](const SceneSpec& s) {
     return "Δs = a/" + fmt(0.05715 / s.params.spacing, 3);
   };
@@ -250,7 +224,7 @@ std::vector<StudyRow> runEngineStudies(const StudyOptions& o) {
   const std::vector<double> damScales =
       o.quick ? std::vector<double>{0.06, 0.125, 0.3, 1.0} : std::vector<double>{0.06, 0.125, 0.3, 1.0, 3.4};
   for (double sc : damScales) {
-    SceneSpec s = dam(sc);
+    SceneSpec s = presetSpec("dambreak", sc);
     add(damBreak("spacing", damLabel(s), s, tMax));
   }
   // Spacings that divide the 0.2 m tank, so the water fills it and its depth is N Δs³ / area.
@@ -264,7 +238,7 @@ std::vector<StudyRow> runEngineStudies(const StudyOptions& o) {
   }
 
   // 2. Time step: the paper's fixed 2 ms and smaller fixed steps against the adaptive CFL step.
-  const SceneSpec damBase = dam(o.quick ? 0.3 : 1.0);
+  const SceneSpec damBase = presetSpec("dambreak", o.quick ? 0.3 : 1.0);
   const std::vector<double> fixed = o.quick ? std::vector<double>{0.002, 0.0001}
                                             : std::vector<double>{0.002, 0.0005, 0.0002, 0.0001};
   for (double dt : fixed) {

@@ -74,21 +74,20 @@ emitted=$(sed -n 's/.*; emitted \([0-9]*\);.*/\1/p' <<<"$out")
 [ "${near:-0}" -ge 10 ] && [ "${disk:-0}" -ge 10 ] && [ "${emitted:-0}" -ge 10 ] \
   || { echo "too few particles from the moved source: $out"; exit 1; }
 echo "replay: $(head -1 <<<"$out")"
-# A bad replay file: exit 2 with the line named, before any window opens.
-printf '3 place on\n5 jump 1 2\n' > "$tmp/bad.txt"
-set +e
-msg=$("$scour" --replay "$tmp/bad.txt" 2>&1); rc=$?
-set -e
-[ $rc -eq 2 ] && grep -qF "bad.txt:2: unknown action 'jump'" <<<"$msg" || { echo "bad replay: $rc $msg"; exit 1; }
-echo "bad replay refused: $msg"
+# A bad replay file is refused before any window opens: exit 2, the line and the problem named.
+refused() {  # refused NAME CONTENT MESSAGE
+  printf "$2" > "$tmp/$1"
+  set +e
+  msg=$("$scour" --replay "$tmp/$1" 2>&1); rc=$?
+  set -e
+  [ $rc -eq 2 ] && grep -qF "$3" <<<"$msg" || { echo "bad replay $1: $rc $msg"; exit 1; }
+  echo "bad replay refused: $msg"
+}
+refused bad.txt '3 place on\n5 jump 1 2\n' "bad.txt:2: unknown action 'jump'"
 # A bad argument is refused the same way (a drag takes four window pixels); a trailing comment is not
 # an argument.
-printf '3 place on   # a comment\n5 drag 1 2 three 4\n' > "$tmp/bad2.txt"
-set +e
-msg=$("$scour" --replay "$tmp/bad2.txt" 2>&1); rc=$?
-set -e
-[ $rc -eq 2 ] && grep -qF "bad2.txt:2: 'drag' takes window pixels, found 'three'" <<<"$msg" || { echo "bad drag: $rc $msg"; exit 1; }
-echo "bad drag refused: $msg"
+refused bad2.txt '3 place on   # a comment\n5 drag 1 2 three 4\n' \
+  "bad2.txt:2: 'drag' takes window pixels, found 'three'"
 # bench --with-window: engine steps per second with the window open and with none.
 out=$(xvfb-run -a -s "-screen 0 1280x720x24" "$scour" bench default --scale 0.2 --with-window --seconds 1 --json 2>/dev/null | sed -n '/^{/,/^}/p')
 python3 -c "

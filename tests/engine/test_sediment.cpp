@@ -5,62 +5,35 @@
 #include <cmath>
 
 #include "scene/presets.h"
+#include "study/measures.h"
 
 using namespace scour;
 
-namespace {
-double totalSediment(const World& w) {
-  double s = 0;
-  for (double v : w.fluid().sed) s += v;
-  return s;
-}
-/// Sediment-weighted centre of the particles.
-Eigen::Vector3d sedimentCentroid(const World& w) {
-  const Fluid& f = w.fluid();
-  Eigen::Vector3d c = Eigen::Vector3d::Zero();
-  for (size_t i = 0; i < f.size(); ++i) c += f.sed[i] * f.x[i].cast<double>();
-  return c / totalSediment(w);
-}
-/// Sediment-weighted variance about c0, per axis.
-Eigen::Vector3d sedimentVariance(const World& w, const Eigen::Vector3d& c0) {
-  const Fluid& f = w.fluid();
-  Eigen::Vector3d v = Eigen::Vector3d::Zero();
-  for (size_t i = 0; i < f.size(); ++i) v += f.sed[i] * (f.x[i].cast<double>() - c0).cwiseAbs2();
-  return v / totalSediment(w);
-}
-}  // namespace
 
 TEST_CASE("settling moves sediment down at the settling speed", "[sediment][settling]") {
   Scene s = makePreset("settling");
   World w(s.desc);
   const SimParams& p = w.params();
   const double vs = p.settlingSpeed(), h = p.support();
-  const double s0 = totalSediment(w);
+  const double s0 = suspendedSediment(w);
   const Fluid& f = w.fluid();
   size_t source = 0;
   for (size_t i = 0; i < f.size(); ++i)
     if (f.sed[i] > 0) source = i;
   const float ySource = f.x[source].y();
-  auto centroid = [&] {
-    double sy = 0, s = 0;
-    for (size_t i = 0; i < f.size(); ++i) sy += f.sed[i] * f.x[i].y(), s += f.sed[i];
-    return sy / s;
-  };
+  auto centroid = [&] { return sedimentCentroid(w).y(); };
   // Away from the bottom: between one h below the start and 3h above the floor.
   std::vector<std::pair<double, double>> samples;  // (t, centroid)
   while (centroid() > 3 * h) {
     w.step();
     for (size_t i = 0; i < f.size(); ++i)
       if (i != source && f.x[i].y() >= ySource - 1e-6f) REQUIRE(f.sed[i] == 0.0);  // only down
-    REQUIRE(std::abs(totalSediment(w) - s0) <= 1e-12 * s0);
+    REQUIRE(std::abs(suspendedSediment(w) - s0) <= 1e-12 * s0);
     if (centroid() < ySource - h) samples.emplace_back(w.time(), centroid());
     REQUIRE(w.time() < 100.0);
   }
   REQUIRE(samples.size() > 10);
-  // Least-squares slope of the centroid against time.
-  double st = 0, sy = 0, stt = 0, sty = 0, n = double(samples.size());
-  for (auto [t, y] : samples) st += t, sy += y, stt += t * t, sty += t * y;
-  double speed = -(n * sty - st * sy) / (n * stt - st * st);
+  const double speed = -leastSquaresSlope(samples);  // the centroid's descent
   INFO("centroid speed " << speed << " m/s, |v_s| = " << vs << " m/s");
   CHECK(std::abs(speed / vs - 1.0) < 0.15);
   CHECK(w.invariants().c_min >= 0.0);
@@ -75,7 +48,7 @@ TEST_CASE("diffusion spreads a pulse with variance 2·D·t per axis", "[sediment
   Scene s = makePreset("diffusion");
   World w(s.desc);
   const double D = w.params().diffusion, h = w.params().support();
-  const double s0 = totalSediment(w);
+  const double s0 = suspendedSediment(w);
   const Eigen::Vector3d c0 = sedimentCentroid(w);
   auto variance = [&] { return sedimentVariance(w, c0); };
   // Once the pulse covers a few h (σ ≈ 1.5 h), measure the growth over the next stretch.
@@ -91,7 +64,7 @@ TEST_CASE("diffusion spreads a pulse with variance 2·D·t per axis", "[sediment
   // Symmetric: the centroid stays put and the three axes agree.
   CHECK((sedimentCentroid(w) - c0).norm() < 1e-5);  // float lattice positions: ~1e-6 Δs
   CHECK(std::abs(growth[0] - growth[2]) < 1e-6 * growth[0]);
-  CHECK(std::abs(totalSediment(w) - s0) <= 1e-12 * s0);
+  CHECK(std::abs(suspendedSediment(w) - s0) <= 1e-12 * s0);
   WARN("diffusion: dσ²/dt / 2D = " << growth.transpose() / (2 * D));
 }
 
@@ -111,13 +84,8 @@ TEST_CASE("naive gradient advection moves sediment down (centroid at 0.49 |v_s|)
   World w(s.desc);
   const SimParams& p = w.params();
   const double vs = p.settlingSpeed(), h = p.support();
-  const double s0 = totalSediment(w);
-  const Fluid& f = w.fluid();
-  auto centroid = [&] {
-    double sy = 0, sv = 0;
-    for (size_t i = 0; i < f.size(); ++i) sy += f.sed[i] * f.x[i].y(), sv += f.sed[i];
-    return sy / sv;
-  };
+  const double s0 = suspendedSediment(w);
+  auto centroid = [&] { return sedimentCentroid(w).y(); };
   const double y0 = centroid();
   // The donor–acceptor run above takes about this long from the top to 3h above the floor.
   const double span = (y0 - 3 * h) / vs;
@@ -128,16 +96,14 @@ TEST_CASE("naive gradient advection moves sediment down (centroid at 0.49 |v_s|)
     REQUIRE(w.soilBudget().relativeError() < World::kSoilTolerance);
   }
   REQUIRE(samples.size() > 10);
-  double st = 0, sy = 0, stt = 0, sty = 0, n = double(samples.size());
-  for (auto [t, y] : samples) st += t, sy += y, stt += t * t, sty += t * y;
-  const double speed = -(n * sty - st * sy) / (n * stt - st * st);
+  const double speed = -leastSquaresSlope(samples);
   const SedimentDefects& d = w.sedimentDefects();
   INFO("centroid speed " << speed << " m/s, |v_s| = " << vs << " m/s");
   CHECK(speed > 0.0);  // the sign is right: the centroid descends
   CHECK(centroid() < y0 - h);
   // Not conservative, and the counter sees exactly what the suspended volume gained.
   CHECK(d.created > s0);
-  CHECK(std::abs(totalSediment(w) - s0 - d.created) <= 1e-9 * (s0 + d.created));
+  CHECK(std::abs(suspendedSediment(w) - s0 - d.created) <= 1e-9 * (s0 + d.created));
   CHECK(d.c_min_raw < 0.0);             // it undershoots …
   CHECK(w.invariants().c_min >= 0.0);   // … and the clamp keeps C valid
   CHECK(w.invariants().c_max <= p.c_max);
@@ -156,14 +122,14 @@ TEST_CASE("eq. (19) as printed conserves sediment but diffuses at 6e-5 × 2·D",
   s.desc.params.diffusion_form = 1;
   World w(s.desc);
   const double D = w.params().diffusion;
-  const double s0 = totalSediment(w);
+  const double s0 = suspendedSediment(w);
   const Eigen::Vector3d c0 = sedimentCentroid(w);
   auto variance = [&] { return sedimentVariance(w, c0); };
   // The same stretch of time as the consistent form's test, from the start.
   const Eigen::Vector3d v0 = variance();
   while (w.time() < 0.4) {
     w.step();
-    REQUIRE(std::abs(totalSediment(w) - s0) <= 1e-12 * s0);
+    REQUIRE(std::abs(suspendedSediment(w) - s0) <= 1e-12 * s0);
   }
   const Eigen::Vector3d growth = (variance() - v0) / w.time();
   const Eigen::Vector3d ratio = growth / (2 * D);
