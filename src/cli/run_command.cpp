@@ -69,6 +69,8 @@ Scene loadScene(const std::string& name, double scale, long particles,
     return buildScene(spec);
   } catch (const TerrainError& e) {
     throw InputError(std::string("terrain: ") + e.what());
+  } catch (const SceneError& e) {
+    throw InputError(name + ": " + e.what());
   }
 }
 
@@ -127,13 +129,13 @@ int runScene(const RunOptions& o) {
       const Checkpoint c = readCheckpoint(o.resume);
       world = std::make_unique<World>(resumeWorld(c, scene));
     } catch (const CheckpointError& e) {
-      throw InputError(e.what());
+      throw InputError(std::string("--resume: ") + e.what());
     } catch (const SceneError& e) {
-      throw InputError(e.what());
+      throw InputError("--resume: " + o.resume + ": " + e.what());
     } catch (const TerrainError& e) {
-      throw InputError(o.resume + ": terrain: " + e.what());
+      throw InputError("--resume: " + o.resume + ": terrain: " + e.what());
     } catch (const std::invalid_argument& e) {
-      throw InputError(o.resume + ": " + e.what());
+      throw InputError("--resume: " + o.resume + ": " + e.what());
     }
     if (o.steps > 0 && o.steps <= world->steps())
       throw InputError("--steps: the checkpoint is at step " + std::to_string(world->steps()) +
@@ -201,7 +203,7 @@ int runScene(const RunOptions& o) {
   };
   if (o.particlesEvery > 0) writeParticlesPly(dir / plyName(0), world->fluid(), world->params().particleVolume(), 0.0);
   if (frames) frames->write(makeFrame(*world), (dir / frameName(world->steps())).string());
-  std::string failure;
+  std::string failure, status = "ok";
   try {
     while (o.steps > 0 ? world->steps() < o.steps : world->time() < o.time - 1e-12) {
       const StepStats st = world->step();
@@ -221,14 +223,20 @@ int runScene(const RunOptions& o) {
       }
     }
   } catch (const InvariantViolation& e) {
-    failure = e.what();
+    failure = e.what(), status = "invariant_violated";
+  } catch (const LimitExceeded& e) {
+    failure = e.what(), status = "limit_exceeded";
+  } catch (const std::exception& e) {
+    // Whatever else a step throws (memory, an output that cannot be written), the run still
+    // ends with its summary and the documented code.
+    failure = e.what(), status = "failed";
   }
   if (tty) progress(true);
   writeAtomically(dir / "metrics.csv", [&](std::ostream& out) { out << metrics.str(); });
   double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
   json summary;
-  summary["status"] = failure.empty() ? "ok" : "invariant_violated";
+  summary["status"] = status;
   if (!failure.empty()) summary["error"] = failure;
   summary["particles"] = world->fluid().size();
   summary["steps"] = world->steps();
@@ -277,9 +285,12 @@ int runScene(const RunOptions& o) {
   writeAtomically(dir / "summary.json", [&](std::ostream& out) { out << summary.dump(2) << "\n"; });
 
   if (!failure.empty()) {
-    std::cerr << "error: invariant violated at " << failure << "\n"
+    const char* what = status == "invariant_violated" ? "invariant violated at "
+                       : status == "limit_exceeded"   ? "limit reached at "
+                                                      : "the run failed: ";
+    std::cerr << "error: " << what << failure << "\n"
               << "summary written to " << (dir / "summary.json").string() << "\n";
-    return kExitInvariant;
+    return status == "failed" ? kExitFailure : kExitInvariant;
   }
   std::cout << "ran " << world->steps() << " steps (" << world->time() << " s simulated, "
             << world->fluid().size() << " particles) in " << wall << " s; outputs in "

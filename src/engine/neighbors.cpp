@@ -28,12 +28,14 @@ void Fluid::gather(const std::vector<uint32_t>& order) {
 }
 
 Eigen::Vector3i Grid::cellOf(const Vec3f& p) const {
-  Vec3f q = (p - origin_) / cell_;
-  return {int(std::floor(q.x())), int(std::floor(q.y())), int(std::floor(q.z()))};
+  // Far outside (or not a number, which compares false) clamps to just outside the grid: the
+  // clamp never brings two points closer in cells than they are, so nothing within reach is lost.
+  auto axis = [](float q) { return q >= -1.0f ? (q < 2e9f ? int(std::floor(q)) : 2000000000) : -1; };
+  const Vec3f q = (p - origin_) / cell_;
+  return {axis(q.x()), axis(q.y()), axis(q.z())};
 }
 
 void Grid::build(const std::vector<Vec3f>& x, float cell) {
-  cell_ = cell;
   const size_t n = x.size();
   Vec3f lo = Vec3f::Constant(std::numeric_limits<float>::max()), hi = -lo;
   if (n == 0) lo = hi = Vec3f::Zero();
@@ -43,6 +45,7 @@ void Grid::build(const std::vector<Vec3f>& x, float cell) {
     Vec3f tlo = Vec3f::Constant(std::numeric_limits<float>::max()), thi = -tlo;
 #pragma omp for schedule(static) nowait
     for (size_t i = 0; i < n; ++i) {
+      if (!x[i].allFinite()) continue;  // binned into an edge cell below
       tlo = tlo.cwiseMin(x[i]);
       thi = thi.cwiseMax(x[i]);
     }
@@ -52,14 +55,24 @@ void Grid::build(const std::vector<Vec3f>& x, float cell) {
       hi = hi.cwiseMax(thi);
     }
   }
-  origin_ = lo - Vec3f::Constant(cell);
-  Vec3f ext = (hi - origin_) / cell;
+  if (!(lo.array() <= hi.array()).all()) lo = hi = Vec3f::Zero();  // no finite point
+  // A blow-up can throw a few particles kilometres away. The grid stays within a memory bound by
+  // widening its cells (cells at least `cell` wide still hold every point within `cell` in the
+  // 27 around); a healthy run is far below the bound and keeps cells of exactly `cell`.
+  const double maxCells = std::max(double(kMaxCells), 512.0 * double(n));
+  const Eigen::Vector3d span = (hi - lo).cast<double>();
+  double edge = cell;
+  auto cellsAt = [&](double e) { return (span.x() / e + 4) * (span.y() / e + 4) * (span.z() / e + 4); };
+  while (cellsAt(edge) > maxCells) edge *= 2;
+  cell_ = float(edge);
+  origin_ = lo - Vec3f::Constant(cell_);
+  Vec3f ext = (hi - origin_) / cell_;
   dims_ = {int(ext.x()) + 2, int(ext.y()) + 2, int(ext.z()) + 2};
   const size_t cells = size_t(dims_.x()) * dims_.y() * dims_.z();
   std::vector<int64_t> cellIdx(n);
 #pragma omp parallel for schedule(static)
   for (size_t i = 0; i < n; ++i) {
-    Eigen::Vector3i c = cellOf(x[i]);
+    const Eigen::Vector3i c = cellOf(x[i]).cwiseMax(0).cwiseMin(dims_ - Eigen::Vector3i::Ones());
     cellIdx[i] = linear(c.x(), c.y(), c.z());
   }
   countingSort(cellIdx, cells, start_, sorted_);

@@ -28,8 +28,11 @@ using Vec3f = Eigen::Vector3f;
 
 class Grid {
  public:
-  /// Bins points into cells of edge `cell` over their bounding box (expanded by one cell).
+  /// Bins points into cells of edge `cell` over their bounding box (expanded by one cell). Should
+  /// that take more than max(kMaxCells, 512 per point) cells (points flung far apart), the
+  /// cells are widened until it does not; a point that is not finite goes into an edge cell.
   void build(const std::vector<Vec3f>& x, float cell);
+  static constexpr size_t kMaxCells = size_t(1) << 25;
   /// Bins a second point set (boundary particles) into the same cells; points outside are dropped.
   void binOther(const std::vector<Vec3f>& y, std::vector<uint32_t>& start,
                 std::vector<uint32_t>& sorted) const;

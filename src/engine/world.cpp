@@ -1,5 +1,7 @@
 #include "engine/world.h"
 
+#include "engine/limits.h"
+
 #include <omp.h>
 
 #include <algorithm>
@@ -65,12 +67,25 @@ void require(bool ok, const std::string& what) {
   if (!ok) throw std::invalid_argument(what);
 }
 
-void validateSource(const Source& src, const std::string& at) {
+// A source is checked against the limits before its slots are made, and its exit speed once
+// they are (engine/limits.h).
+Emitter makeEmitter(const Source& src, const SimParams& p, const std::string& at) {
   require(src.radius > 0 && std::isfinite(src.radius), at + ".radius must be positive");
   require(src.rate > 0 && std::isfinite(src.rate), at + ".rate must be positive");
   require(src.direction.norm() > 0 && src.direction.allFinite(), at + ".direction must be a non-zero vector");
   require(src.center.allFinite(), at + ".position must be finite");
   require(src.start >= 0 && !(src.stop < src.start), at + ".stop must not come before its start");
+  std::string bad = checkSourceWork(src, p, at);
+  require(bad.empty(), bad);
+  Emitter e(src, p.spacing);
+  bad = checkSourceSpeed(src, p, double(e.slots.size()), at);
+  require(bad.empty(), bad);
+  return e;
+}
+
+void validateSink(const Sink& s, const std::string& at) {
+  require(s.lo.allFinite() && s.hi.allFinite() && (s.hi - s.lo).minCoeff() > 0,
+          at + ": max must exceed min on every axis");
 }
 
 }  // namespace
@@ -94,10 +109,13 @@ World::World(WorldDesc d)
   vertexArea_ = vertexAreas(hf_);
   terrainReference_ = hf_.minHeight();
   acc_.resize(hf_.triangleCount());
-  for (size_t s = 0; s < d.sources.size(); ++s) {
-    validateSource(d.sources[s], "sources[" + std::to_string(s) + "]");
-    emitters_.emplace_back(d.sources[s], p_.spacing);
-  }
+  require(double(hf_.heights().size()) <= Limits::kMaxTerrainVertices, "terrain: more vertices than the limit");
+  maxParticles_ = size_t(particleCapacity(double(hf_.heights().size())));
+  require(d.particles.size() <= maxParticles_, "particles: more than the memory limit allows");
+  simulationBox();
+  for (size_t s = 0; s < d.sources.size(); ++s)
+    emitters_.push_back(makeEmitter(d.sources[s], p_, "sources[" + std::to_string(s) + "]"));
+  for (size_t s = 0; s < sinks_.size(); ++s) validateSink(sinks_[s], "sinks[" + std::to_string(s) + "]");
   for (size_t r = 0; r < d.rain.size(); ++r) {
     const Rain& rn = d.rain[r];
     std::string at = "rain[" + std::to_string(r) + "]";
@@ -109,6 +127,12 @@ World::World(WorldDesc d)
     require(rn.drop_height >= 0 && std::isfinite(rn.drop_height),
             at + ".drop_height must be finite and ≥ 0");
     require(std::isfinite(rn.drop_speed), at + ".drop_speed must be finite");
+    require(rainArea(rn) > 0, at + ": the rectangle does not overlap the terrain");
+    const double drops = rainPlacedPerStep(rn, rainArea(rn), p_.spacing, longestStep(p_));
+    require(drops <= Limits::kMaxPlacedPerStep,
+            at + ".intensity_mm_h: " + std::to_string(long(drops)) +
+                " drops per step at this spacing, more than the limit of " +
+                std::to_string(long(Limits::kMaxPlacedPerStep)));
     rain_.push_back(RainState{rn, 0.0, 0, 0, 0});
   }
   require(d.pressure.empty() || d.pressure.size() == d.particles.size(),
@@ -247,7 +271,27 @@ void World::removeParticles() {
   });
 }
 
+double World::rainArea(const Rain& r) const {
+  const double w = std::min(r.hi_x, hf_.xMax()) - std::max(r.lo_x, hf_.x0());
+  const double d = std::min(r.hi_z, hf_.zMax()) - std::max(r.lo_z, hf_.z0());
+  return w > 0 && d > 0 ? w * d : 0.0;
+}
+
+void World::simulationBox() {
+  const double pad = std::max(hf_.xMax() - hf_.x0(), hf_.zMax() - hf_.z0());
+  const double climb = p_.sound_speed * p_.sound_speed / (2 * std::max(p_.gravity, 0.1));
+  boxLo_ = Vec3f(float(hf_.x0() - pad), float(hf_.minHeight() - pad), float(hf_.z0() - pad));
+  boxHi_ = Vec3f(float(hf_.xMax() + pad), float(hf_.maxHeight() + pad + climb), float(hf_.zMax() + pad));
+}
+
 bool World::place(const Vec3f& pos, const Vec3f& vel, double clearance) {
+  if (f_.size() >= maxParticles_) {
+    std::ostringstream o;
+    o << "step " << step_ << " (t = " << time_ << " s): " << f_.size()
+      << " particles, the most the memory limit of " << Limits::kMaxBytes / 1e9
+      << " GB allows next to this terrain: sources and rain stop the run here";
+    throw LimitExceeded(o.str());
+  }
   // The grid indexes the particles that existed at the last search; they have moved by far less
   // than a cell since, so its 27 cells still hold every particle within a clearance (≤ Δs) of
   // pos. Particles placed since (index ≥ the grid's count: this step's drops and layers, the
@@ -314,13 +358,16 @@ void World::rain() {
       const Rain& rn = r.rain;
       if (time_ < rn.start || time_ >= rn.stop) continue;
       const double metresPerSecond = rn.intensity_mm_h / 3.6e6;
-      r.pending += metresPerSecond * (rn.hi_x - rn.lo_x) * (rn.hi_z - rn.lo_z) * dt_;
+      // Rain falls on the part of its rectangle over the terrain, at its intensity: a rectangle
+      // larger than the domain brings the domain's share, not its whole volume.
+      r.pending += metresPerSecond * rainArea(rn) * dt_;
       while (r.pending >= drop) {
         r.pending -= drop;
         const auto [u, w] = RainState::point(rn.seed, r.drawn++);
-        // With closed walls the drops fall on the rectangle less the walls' contact zone (the
-        // same volume, spread uniformly over the rest).
-        double lx = rn.lo_x, hx = rn.hi_x, lz = rn.lo_z, hz = rn.hi_z;
+        // With closed walls the drops fall on that part less the walls' contact zone (the same
+        // volume, spread uniformly over the rest).
+        double lx = std::max(rn.lo_x, hf_.x0()), hx = std::min(rn.hi_x, hf_.xMax());
+        double lz = std::max(rn.lo_z, hf_.z0()), hz = std::min(rn.hi_z, hf_.zMax());
         if (dom_.walls) {
           const double m = wallMargin();
           lx = std::max(lx, hf_.x0() + m), hx = std::min(hx, hf_.xMax() - m);
@@ -377,8 +424,20 @@ void World::setParams(const SimParams& q) {
     for (const Vec3f& x : f_.x) sumY += double(x.y());
     energyLedger_ += k_.mass * (q.gravity - p_.gravity) * sumY;
   }
+  // A longer step places more per step: the sources and rain are checked against the limits.
+  for (size_t i = 0; i < emitters_.size(); ++i) {
+    const std::string at = "sources[" + std::to_string(i) + "]";
+    std::string bad = checkSourceWork(emitters_[i].src, q, at);
+    if (bad.empty()) bad = checkSourceSpeed(emitters_[i].src, q, double(emitters_[i].slots.size()), at);
+    require(bad.empty(), bad);
+  }
+  for (size_t r = 0; r < rain_.size(); ++r)
+    require(rainPlacedPerStep(rain_[r].rain, rainArea(rain_[r].rain), q.spacing, longestStep(q)) <=
+                Limits::kMaxPlacedPerStep,
+            "rain[" + std::to_string(r) + "]: more drops per step than the limit at this time step");
   p_ = resolve(q);
   k_ = SphConstants(p_);
+  simulationBox();
   if (!fx_.surface_tension) k_.kappa = 0;
   sk_ = SedimentConstants(p_);
 }
@@ -390,16 +449,15 @@ std::vector<Source> World::sources() const {
 }
 
 size_t World::addSource(const Source& s) {
-  validateSource(s, "source");
-  emitters_.emplace_back(s, p_.spacing);
+  emitters_.push_back(makeEmitter(s, p_, "source"));
   return emitters_.size() - 1;
 }
 
 void World::updateSource(size_t i, const Source& s) {
   require(i < emitters_.size(), "source " + std::to_string(i) + " does not exist");
-  validateSource(s, "source");
+  Emitter next = makeEmitter(s, p_, "source");
   const long emitted = emitters_[i].emitted, blocked = emitters_[i].blocked;
-  emitters_[i] = Emitter(s, p_.spacing);
+  emitters_[i] = std::move(next);
   emitters_[i].emitted = emitted, emitters_[i].blocked = blocked;
 }
 
@@ -430,6 +488,10 @@ void World::removeSink(size_t i) {
 long World::addWater(const Eigen::Vector3d& centre, double radius) {
   require(centre.allFinite() && std::isfinite(radius) && radius > 0, "water brush: needs a finite centre and radius > 0");
   const double ds = p_.spacing;
+  const double reach = 2 * std::ceil(radius / ds) + 1;
+  require(reach * reach * reach <= Limits::kMaxPlacedPerStep,
+          "water brush: a radius of " + std::to_string(radius) + " m is more than " +
+              std::to_string(long(Limits::kMaxPlacedPerStep)) + " lattice points at this spacing");
   const int n = int(std::ceil(radius / ds));
   // On the lattice of spacing Δs through the centre, so repeated strokes fill rather than pile up.
   const Eigen::Vector3d base = (centre / ds).array().round() * ds;
@@ -546,7 +608,7 @@ void World::checkInvariants() {
   const size_t n = f_.size();
   const double ds = p_.spacing, slack = 0.5 * ds;
   // First offending particle (lowest index) of each kind, found in parallel, reported in order.
-  long badNan = -1, badOut = -1;
+  long badNan = -1, badOut = -1, badBox = -1;
   double deepest = -1e300;
   long deepestAt = -1;
   auto upd = [](long& slot, long i) {
@@ -574,6 +636,7 @@ void World::checkInvariants() {
       if (dom_.walls && (x.x() < hf_.x0() - slack || x.x() > hf_.xMax() + slack ||
                          x.z() < hf_.z0() - slack || x.z() > hf_.zMax() + slack))
         upd(badOut, long(i));
+      if ((x.array() < boxLo_.array()).any() || (x.array() > boxHi_.array()).any()) upd(badBox, long(i));
     }
 #pragma omp critical(scour_inv_deep)
     if (tdeep > deepest || (tdeep == deepest && tat < deepestAt)) deepest = tdeep, deepestAt = tat;
@@ -599,6 +662,13 @@ void World::checkInvariants() {
     std::ostringstream o;
     o << where(badNan) << " has a non-finite state: velocity (" << v.x() << ", " << v.y() << ", "
       << v.z() << ")";
+    throw InvariantViolation(o.str());
+  }
+  if (badBox >= 0) {
+    const Vec3f& v = f_.v[badBox];
+    std::ostringstream o;
+    o << where(badBox) << " left the simulation box (the terrain grown by its size on every side) "
+      << "at speed " << v.norm() << " m/s: the run blew up";
     throw InvariantViolation(o.str());
   }
   // The soil budget, summed from scratch (every vertex, every particle) when soil can move.
@@ -673,9 +743,14 @@ void getVec(std::istream& in, std::vector<T>& v, const char* what, uint64_t expe
     throw std::runtime_error(std::string("state does not fit this scene (") + what + ": " +
                              std::to_string(n) + " entries, the scene has " +
                              std::to_string(expect) + ")");
-  if (n > (uint64_t(1) << 34) / sizeof(T))
+  // Never more than the bytes that are left: a corrupt count cannot ask for memory.
+  const std::streampos here = in.tellg();
+  in.seekg(0, std::ios::end);
+  const std::streamoff left = in.tellg() - here;
+  in.seekg(here);
+  if (!in || left < 0 || n > uint64_t(left) / sizeof(T))
     throw std::runtime_error(std::string("state is corrupt (") + what + ": " + std::to_string(n) +
-                             " entries)");
+                             " entries, more than the state holds)");
   v.resize(n);
   in.read(reinterpret_cast<char*>(v.data()), std::streamsize(n * sizeof(T)));
   if (!in) throw std::runtime_error(std::string("state ends early (in ") + what + ")");
@@ -725,8 +800,14 @@ void World::loadState(std::istream& in) {
   std::vector<Vec3f> vhat;
   getVec(in, vhat, "predicted velocities");  // empty while the fluid is frozen
   if (!vhat.empty() && vhat.size() != n) throw std::runtime_error("state is corrupt (predicted velocities)");
+  for (size_t i = 0; i < n; ++i)
+    if (!f.x[i].allFinite() || !f.v[i].allFinite() || !std::isfinite(f.rho[i]) || !(f.rho[i] > 0) ||
+        !std::isfinite(f.sed[i]) || f.sed[i] < 0)
+      throw std::runtime_error("state is corrupt (particle " + std::to_string(i) + " is not finite)");
   std::vector<double> heights;
   getVec(in, heights, "terrain heights", hf_.heights().size());
+  for (double h : heights)
+    if (!std::isfinite(h)) throw std::runtime_error("state is corrupt (a terrain height is not finite)");
   BoundaryParticles b;
   getVec(in, b.x, "boundary particles");
   const uint64_t nb = b.x.size();

@@ -92,6 +92,13 @@ class InvariantViolation : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+/// A run that reaches a limit of engine/limits.h while it runs (sources that have filled the
+/// memory the limits allow): it stops as a violated invariant does, with the numbers.
+class LimitExceeded : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
 struct StepStats {
   double dt = 0, time = 0, max_speed = 0;
   size_t particles = 0;
@@ -218,8 +225,17 @@ class World {
   /// Distance from a closed wall within which no particle is placed: Δs/2 (where a lattice's
   /// first layer sits), or the contact distance if larger [m].
   double wallMargin() const { return p_.spacing * std::max(0.5, p_.contact_over_spacing); }
+  /// The part of a rain's rectangle over the terrain [m²].
+  double rainArea(const Rain& r) const;
+  /// Sets the simulation box: the terrain's rectangle and height range, grown on every side by
+  /// its larger extent, and upwards by the height a particle at the sound speed could climb. A
+  /// particle outside it has been flung out by a blow-up (checkInvariants).
+  void simulationBox();
+  Vec3f boxLo_ = Vec3f::Zero(), boxHi_ = Vec3f::Zero();
+  /// Particles the memory limit leaves room for next to this terrain (engine/limits.h).
+  size_t maxParticles_ = 0;
   /// Places a particle unless one lies closer than clearance·Δs, or a closed wall closer than
-  /// wallMargin(); returns whether it did.
+  /// wallMargin(); returns whether it did. Throws LimitExceeded at the particle limit.
   bool place(const Vec3f& pos, const Vec3f& vel, double clearance = 0.5);
   void checkInvariants();
   void sedimentWork();

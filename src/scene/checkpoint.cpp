@@ -4,6 +4,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "scene/input_file.h"
 #include "scene/output.h"
 #include "scene/scene_json.h"
 
@@ -43,9 +44,12 @@ void writeCheckpoint(const std::string& path, const SceneSpec& spec, const World
 }
 
 Checkpoint readCheckpoint(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw CheckpointError(path + ": cannot open the checkpoint");
-  const std::string file((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  std::string file;
+  try {
+    file = readInputFile(path, "checkpoint", kMaxCheckpointBytes);
+  } catch (const InputFileError& e) {
+    throw CheckpointError(e.what());
+  }
   constexpr size_t kHeader = sizeof kMagic + sizeof(uint32_t) + sizeof(uint64_t);
   if (file.size() < kHeader || std::memcmp(file.data(), kMagic, sizeof kMagic) != 0)
     throw CheckpointError(path + ": not a Scour checkpoint (no SCOURCKP header)");
@@ -71,10 +75,10 @@ Checkpoint readCheckpoint(const std::string& path) {
   if (payload.size() < sizeof sceneLength || sceneLength > payload.size() - sizeof sceneLength)
     throw CheckpointError(path + ": corrupted checkpoint (scene length)");
   try {
-    c.spec = specFromJson(nlohmann::json::parse(payload.substr(sizeof sceneLength, sceneLength)),
-                          path + " (scene)");
-  } catch (const nlohmann::json::exception& e) {
-    throw CheckpointError(path + ": corrupted checkpoint (scene: " + e.what() + ")");
+    const std::string where = path + " (scene)";
+    c.spec = specFromJson(parseJsonText(payload.substr(sizeof sceneLength, sceneLength), where), where);
+  } catch (const SceneError& e) {
+    throw CheckpointError(std::string("corrupted checkpoint: ") + e.what());
   }
   c.state = payload.substr(sizeof sceneLength + sceneLength);
   return c;

@@ -20,6 +20,8 @@
 namespace scour {
 
 constexpr uint32_t kCheckpointVersion = 1;
+/// Largest checkpoint read [bytes] (a run at the particle limit writes less).
+constexpr size_t kMaxCheckpointBytes = size_t(8) << 30;
 
 struct CheckpointError : std::runtime_error {
   using std::runtime_error::runtime_error;

@@ -74,8 +74,11 @@ Scene buildScene(const SceneSpec& spec) {
   Scene s;
   s.spec = spec;
   WorldDesc& d = s.desc;
+  checkFootprint(spec);
   d.params = spec.params;
   d.terrain = buildTerrain(spec.terrain);
+  checkFootprint(spec, &d.terrain);
+  checkGeometry(spec, d.terrain);
   d.domain = spec.domain;
   d.effects = spec.effects;
   d.sources = spec.sources;
@@ -83,7 +86,11 @@ Scene buildScene(const SceneSpec& spec) {
   d.rain = spec.rain;
   const double ds = spec.params.spacing;
   const double rhoG = spec.params.rest_density * spec.params.gravity;
-  for (const WaterBlock& b : spec.blocks) {
+  for (size_t blockIndex = 0; blockIndex < spec.blocks.size(); ++blockIndex) {
+    const WaterBlock& b = spec.blocks[blockIndex];
+    const std::string at = "water.blocks[" + std::to_string(blockIndex) + "]";
+    const size_t before = d.particles.size();
+    long buried = 0;
     const std::vector<uint8_t> wet = b.flood ? floodedVertices(d.terrain, b) : std::vector<uint8_t>{};
     // Whole cells that fit in the box (never more, so no particle starts inside a wall next to
     // it), centred in it.
@@ -95,12 +102,22 @@ Scene buildScene(const SceneSpec& spec) {
       for (int j = 0; j < n.y(); ++j)
         for (int i = 0; i < n.x(); ++i) {
           Eigen::Vector3d x = lo + ds * Eigen::Vector3d(i + 0.5, j + 0.5, k + 0.5);
-          if ((b.above_terrain || b.flood) && x.y() < d.terrain.heightAt(x.x(), x.z()) + 0.5 * ds)
-            continue;
+          const double ground = d.terrain.heightAt(x.x(), x.z());
+          if ((b.above_terrain || b.flood) && x.y() < ground + 0.5 * ds) continue;
+          // A plain block must not reach into the terrain: its particles would start inside it.
+          if (x.y() < ground) ++buried;
           if (b.flood && !wet[nearestVertex(d.terrain, x.x(), x.z())]) continue;
           d.particles.push_back(x.cast<float>());
           d.pressure.push_back(float(rhoG * (top - x.y())));  // at rest: hydrostatic
         }
+    if (buried > 0)
+      throw SceneError(at + ": " + std::to_string(buried) + " of its lattice points lie inside the terrain: raise "
+                       "the block, or fill only above the terrain (above_terrain: true)");
+    if (d.particles.size() == before)
+      throw SceneError(at + ": fills no particle at spacing " + std::to_string(ds) + " m" +
+                       (b.flood ? " (the terrain at flood_from is not below the block's top)"
+                        : b.above_terrain ? " (the terrain is not below the block's top)"
+                                          : " (the block is thinner than Δs)"));
   }
   if (!spec.sediment.empty()) {
     d.concentration.assign(d.particles.size(), 0.0);
@@ -166,9 +183,9 @@ SceneSpec slope(double scale, bool river) {
   s.terrain.cell = 0.04;
   s.terrain.slope = 0.35;
   s.terrain.side_rise = 0.15;
-  // Water resting on the upper end, lifted to clear the terrain under it.
+  // Water resting on the upper end, above the terrain under it.
   const double top = s.terrain.slope * lx + s.terrain.side_rise;
-  s.blocks.push_back({{0.02, top - 0.14, 0.2}, {0.32, top + 0.16, 0.6}});
+  s.blocks.push_back({{0.02, top - 0.14, 0.2}, {0.32, top + 0.16, 0.6}, true});
   if (river) {
     Source src;
     src.center = {0.1, top + 0.3, 0.4};

@@ -68,6 +68,12 @@ inline TerrainSpec flatTerrain(double length_x, double length_z, double cell) {
   return t;
 }
 
+/// An input error in a scene, with the JSON path of the field in its message (and the file,
+/// where the scene came from one).
+struct SceneError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
 /// Thrown for a heightmap that cannot be used (missing, not greyscale, too large, …).
 struct TerrainError : std::runtime_error {
   using std::runtime_error::runtime_error;
@@ -129,8 +135,31 @@ const std::vector<std::string>& terrainKinds();
 Heightfield buildTerrain(const TerrainSpec& t);
 /// Builds the engine's description: water blocks filled on a cubic lattice of spacing Δs (the
 /// whole cells that fit, centred in the block, at hydrostatic pressure below their top), sediment
-/// marks on the nearest particle.
+/// marks on the nearest particle. First checks the spec against the limits (checkFootprint),
+/// then, on the built terrain, that its geometry makes sense (checkGeometry); throws SceneError
+/// (or TerrainError for a heightmap) before the water is made.
 Scene buildScene(const SceneSpec& spec);
+
+/// What a scene asks of the machine, estimated before the water is made. Without the terrain,
+/// water filled above it (above_terrain, flood_from) is not counted and `unknown` says so; with
+/// it, such a block counts the columns between the terrain and its top.
+struct Footprint {
+  double vertices = 0;   ///< terrain grid vertices
+  double particles = 0;  ///< water-block particles at Δs
+  double bytes = 0;      ///< the memory estimate of engine/limits.h for both
+  bool unknown = false;  ///< some water could not be counted without the terrain
+};
+Footprint estimateFootprint(const SceneSpec& spec, const Heightfield* terrain = nullptr);
+/// Refuses a spec whose terrain, water, memory or per-step emission exceed engine/limits.h,
+/// with the numbers and the field. Throws SceneError. buildScene calls it before building the
+/// terrain (bounded by the vertex limit) and again with it.
+void checkFootprint(const SceneSpec& spec, const Heightfield* terrain = nullptr);
+/// Refuses geometry that would not run as written, naming the field: a source or flood point
+/// off the terrain, a source below it, a rain rectangle that misses the terrain, a water block
+/// beyond the domain or (without above_terrain) inside the terrain, or filling nothing, and
+/// coordinates so far from the origin that float positions could not tell Δs/100 apart.
+/// Throws SceneError.
+void checkGeometry(const SceneSpec& spec, const Heightfield& terrain);
 
 /// A dam break: a column of water a wide and 2a high against the tank's left wall (x = 0),
 /// flowing along +x over a flat floor `tank` long, in a slab six particles deep held by walls

@@ -7,6 +7,8 @@
 #include <filesystem>
 #include <fstream>
 
+#include "scene/input_file.h"
+
 namespace scour {
 
 using nlohmann::json;
@@ -34,10 +36,7 @@ std::string nearest(const std::string& key, const std::vector<std::string>& vali
   return best;
 }
 
-std::string shown(const json& v) {
-  std::string t = v.dump();
-  return t.size() > 60 ? t.substr(0, 57) + "..." : t;
-}
+std::string shown(const json& v) { return excerpt(v.dump()); }
 
 // One JSON object being read: typed getters that say where and what, and a check that every key
 // was used.
@@ -133,12 +132,17 @@ class Fields {
     if (!v.is_array()) fail(at(key), "an array", v);
     return v;
   }
-  /// Every key must have been asked for; the first unknown one is refused.
+  /// Every key must have been asked for; the first unknown one is refused (a long key is quoted
+  /// in part, and only a short one gets a suggestion).
   void finish() const {
     for (const auto& [key, value] : j_.items()) {
       if (std::find(known_.begin(), known_.end(), key) != known_.end()) continue;
-      throw SceneError(file_ + ": " + at(key) + ": unknown key (did you mean '" +
-                       nearest(key, known_) + "'?)");
+      std::string names;
+      for (const auto& k : known_)
+        if (names.find("'" + k + "'") == std::string::npos) names += (names.empty() ? "'" : ", '") + k + "'";
+      const std::string hint = key.size() <= 64 ? "did you mean '" + nearest(key, known_) + "'?"
+                                                : "valid keys here: " + names;
+      throw SceneError(file_ + ": " + excerpt(at(key)) + ": unknown key (" + hint + ")");
     }
   }
 
@@ -358,13 +362,6 @@ SceneSpec specFromJson(const json& j, const std::string& file) {
       }
     }
     t.finish();
-    const double cells = (s.terrain.length_x / s.terrain.cell + 1) * (s.terrain.length_z / s.terrain.cell + 1);
-    if (cells > 4e7) {
-      char msg[160];
-      std::snprintf(msg, sizeof msg, "%s: terrain: %.3g grid vertices (length / cell) is more than the 4e7 this build allows",
-                    file.c_str(), cells);
-      throw SceneError(msg);
-    }
   }
   if (top.has("domain")) {
     Fields d(top.raw("domain"), "domain", file);
@@ -441,6 +438,8 @@ SceneSpec specFromJson(const json& j, const std::string& file) {
     Fields f(sinks[k], "sinks[" + std::to_string(k) + "]", file);
     Sink sk{f.vec3("min"), f.vec3("max")};
     f.finish();
+    if (!((sk.hi - sk.lo).minCoeff() > 0))
+      throw SceneError(file + ": sinks[" + std::to_string(k) + "]: max must exceed min on every axis");
     s.sinks.push_back(sk);
   }
   const json& rain = top.array("rain");
@@ -471,34 +470,95 @@ SceneSpec specFromJson(const json& j, const std::string& file) {
   }
   if (top.has("built")) top.raw("built");  // written by sceneToJson for people; not read back
   top.finish();
-  // The water the scene asks for must fit in memory: estimate before allocating.
-  double particles = 0;
-  const double ds = s.params.spacing;
-  for (const WaterBlock& b : s.blocks) {
-    Eigen::Vector3d n = ((b.max - b.min) / ds).array().floor();
-    particles += n.x() * n.y() * n.z();
-  }
-  if (particles > 5e7) {
-    char msg[200];
-    std::snprintf(msg, sizeof msg,
-                  "%s: water.blocks: %.3g particles at spacing %g m (about %.0f GB) is more than "
-                  "the 5e7 this build allows",
-                  file.c_str(), particles, ds, particles * 500 / 1e9);
-    throw SceneError(msg);
+  // What the scene asks of the machine, before anything is allocated (buildScene checks again,
+  // after --set and --scale).
+  try {
+    checkFootprint(s);
+  } catch (const SceneError& e) {
+    throw SceneError(file + ": " + e.what());
   }
   return s;
 }
 
-SceneSpec loadSceneFile(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw SceneError(path + ": cannot open the scene file");
-  json j;
+std::string excerpt(const std::string& text, size_t limit) {
+  return text.size() > limit ? text.substr(0, limit - 3) + "..." : text;
+}
+
+json parseJsonText(const std::string& text, const std::string& file) {
+  // The reader's own stack of open arrays and objects: it bounds the depth before the parser
+  // (and every recursive function after it) goes deeper, finds a key given twice, and says where
+  // in the document an error lies.
+  struct Open {
+    bool object;
+    std::vector<std::string> keys;
+    size_t index = 0;
+  };
+  std::vector<Open> open;
+  auto where = [&] {
+    std::string path;
+    for (const Open& o : open) {
+      if (o.object && !o.keys.empty()) path += (path.empty() ? "" : ".") + o.keys.back();
+      if (!o.object) path += "[" + std::to_string(o.index) + "]";
+    }
+    return path.empty() ? std::string("(top level)") : excerpt(path, 120);
+  };
+  auto done = [&] {
+    if (!open.empty() && !open.back().object) ++open.back().index;
+  };
+  auto callback = [&](int, json::parse_event_t event, json& parsed) {
+    switch (event) {
+      case json::parse_event_t::object_start:
+      case json::parse_event_t::array_start:
+        if (open.size() >= size_t(kMaxJsonDepth))
+          throw SceneError(file + ": " + where() + ": nested deeper than " +
+                           std::to_string(kMaxJsonDepth) + " levels of arrays and objects");
+        open.push_back({event == json::parse_event_t::object_start, {}, 0});
+        break;
+      case json::parse_event_t::key: {
+        const std::string key = parsed.get<std::string>();
+        auto& keys = open.back().keys;
+        if (std::find(keys.begin(), keys.end(), key) != keys.end()) {
+          keys.push_back(key);
+          throw SceneError(file + ": " + where() + ": key given twice in one object");
+        }
+        keys.push_back(key);
+        break;
+      }
+      case json::parse_event_t::object_end:
+      case json::parse_event_t::array_end:
+        open.pop_back();
+        done();
+        break;
+      case json::parse_event_t::value: done(); break;
+    }
+    return true;
+  };
   try {
-    j = json::parse(in);
-  } catch (const json::parse_error& e) {
-    throw SceneError(path + ": not valid JSON: " + e.what());
+    return json::parse(text, callback);
+  } catch (const json::out_of_range& e) {
+    // The lexer refuses a number beyond double range (1e999) before any value event: the path
+    // is where it stood.
+    std::string what = e.what();
+    const size_t quote = what.find('\'');
+    throw SceneError(file + ": " + where() + ": number beyond the range of a double" +
+                     (quote != std::string::npos ? " (" + excerpt(what.substr(quote), 40) + ")" : ""));
+  } catch (const json::exception& e) {
+    // "…; last read: '<token>'" can quote megabytes: keep its start.
+    std::string what = e.what();
+    const size_t last = what.find("last read: '");
+    if (last != std::string::npos) what = what.substr(0, last + 11) + excerpt(what.substr(last + 11), 40);
+    throw SceneError(file + ": not valid JSON: " + excerpt(what, 240));
   }
-  return specFromJson(j, path);
+}
+
+SceneSpec loadSceneFile(const std::string& path) {
+  std::string text;
+  try {
+    text = readInputFile(path, "scene file", kMaxSceneFileBytes);
+  } catch (const InputFileError& e) {
+    throw SceneError(e.what());
+  }
+  return specFromJson(parseJsonText(text, path), path);
 }
 
 }  // namespace scour

@@ -13,11 +13,6 @@
 
 namespace scour {
 
-/// An input error in a scene file, with the file and JSON path in its message.
-struct SceneError : std::runtime_error {
-  using std::runtime_error::runtime_error;
-};
-
 nlohmann::json paramsToJson(const SimParams& p);
 /// The spec of a scene: what specFromJson reads back.
 nlohmann::json specToJson(const SceneSpec& s);
@@ -27,5 +22,16 @@ nlohmann::json sceneToJson(const Scene& s);
 SceneSpec specFromJson(const nlohmann::json& j, const std::string& file);
 /// Parses a scene file. Throws SceneError (unreadable file, bad JSON, bad field).
 SceneSpec loadSceneFile(const std::string& path);
+
+/// Deepest nesting of arrays and objects a scene file may have (the scene format needs 4).
+constexpr int kMaxJsonDepth = 32;
+/// Largest scene file read [bytes].
+constexpr size_t kMaxSceneFileBytes = size_t(16) << 20;
+/// Parses JSON text strictly: nesting deeper than kMaxJsonDepth, a key given twice in one object
+/// and a number beyond double range are refused (naming the JSON path), as is invalid JSON.
+/// Messages quote at most a short excerpt of the input. Throws SceneError prefixed with `file`.
+nlohmann::json parseJsonText(const std::string& text, const std::string& file);
+/// At most `limit` characters of `text`, with "..." when cut (for quoting input in messages).
+std::string excerpt(const std::string& text, size_t limit = 60);
 
 }  // namespace scour

@@ -7,6 +7,7 @@
 #include <fstream>
 
 #include "scene/assets.h"
+#include "scene/input_file.h"
 #include "scene/presets.h"
 
 namespace scour {
@@ -24,16 +25,28 @@ constexpr long long kMaxPixels = 1LL << 27;  // 134 M pixels: 1 GB of doubles
 Gray readRaw(const TerrainSpec& t) {
   const std::string& f = t.file;
   if (t.raw_width < 2 || t.raw_height < 2)
-    throw TerrainError(f + ": a .r32 heightmap needs terrain.raw_width and raw_height ≥ 2");
+    throw TerrainError(f + ": a .r32 heightmap needs terrain.raw_size [width, height], each ≥ 2");
   if (1LL * t.raw_width * t.raw_height > kMaxPixels)
     throw TerrainError(f + ": " + std::to_string(t.raw_width) + " × " +
                        std::to_string(t.raw_height) + " pixels is more than this build reads");
+  // The file is exactly the grid: a longer one is another size (or another file), not a crop.
+  const size_t want = size_t(t.raw_width) * t.raw_height * sizeof(float);
+  size_t have = 0;
+  try {
+    have = checkInputFile(f, "heightmap", size_t(kMaxPixels) * sizeof(float));
+  } catch (const InputFileError& e) {
+    throw TerrainError(e.what());
+  }
+  if (have != want)
+    throw TerrainError(f + ": holds " + std::to_string(have) + " bytes, but terrain.raw_size [" +
+                       std::to_string(t.raw_width) + ", " + std::to_string(t.raw_height) +
+                       "] of float32 values is " + std::to_string(want) + " bytes");
   std::ifstream in(f, std::ios::binary);
   if (!in) throw TerrainError(f + ": cannot open the heightmap");
   std::vector<float> px(size_t(t.raw_width) * t.raw_height);
   in.read(reinterpret_cast<char*>(px.data()), std::streamsize(px.size() * sizeof(float)));
   if (in.gcount() != std::streamsize(px.size() * sizeof(float)))
-    throw TerrainError(f + ": holds fewer than raw_width × raw_height float32 values");
+    throw TerrainError(f + ": cannot read its " + std::to_string(want) + " bytes");
   Gray g;
   g.w = t.raw_width, g.h = t.raw_height;
   g.v.assign(px.begin(), px.end());
@@ -49,6 +62,9 @@ Gray decodeImage(const std::string& f, const std::vector<unsigned char>& bytes) 
     throw TerrainError(f + ": not a readable image (" + std::string(stbi_failure_reason()) + ")");
   if (comp != 1)
     throw TerrainError(f + ": expected a greyscale image, found " + std::to_string(comp) + " channels");
+  if (w < 2 || h < 2)
+    throw TerrainError(f + ": a " + std::to_string(w) + " × " + std::to_string(h) +
+                       " image: a heightmap needs at least 2 × 2 pixels");
   if (1LL * w * h > kMaxPixels)
     throw TerrainError(f + ": " + std::to_string(w) + " × " + std::to_string(h) +
                        " pixels is more than this build reads");
@@ -83,11 +99,13 @@ Gray readHeightmap(const TerrainSpec& t) {
     }
     g = decodeImage(f, std::vector<unsigned char>(a->data, a->data + a->size));
   } else {
-    std::ifstream in(f, std::ios::binary);
-    if (!in) throw TerrainError(f + ": cannot open the heightmap");
-    std::vector<unsigned char> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-    if (bytes.size() > size_t(1) << 31) throw TerrainError(f + ": file larger than 2 GB");
-    g = decodeImage(f, bytes);
+    std::string file;
+    try {
+      file = readInputFile(f, "heightmap", size_t(1) << 30);
+    } catch (const InputFileError& e) {
+      throw TerrainError(e.what());
+    }
+    g = decodeImage(f, std::vector<unsigned char>(file.begin(), file.end()));
   }
   for (double x : g.v)
     if (!std::isfinite(x)) throw TerrainError(f + ": holds a non-finite height");

@@ -22,5 +22,5 @@ while IFS=$'\t' read -r file want; do
   echo "ok $file: $out"
 done < "$dir/expected.txt"
 echo "$count malformed inputs checked"
-if [ "$count" -lt 25 ]; then echo "FAIL: the corpus needs at least 25 cases"; fail=1; fi
+if [ "$count" -lt 60 ]; then echo "FAIL: the corpus needs at least 60 cases"; fail=1; fi
 exit $fail

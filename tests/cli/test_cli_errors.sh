@@ -30,6 +30,15 @@ expect "cannot create directory" run dambreak --headless --steps 5 --out /proc/n
 expect "unknown stress scene 'nope' (valid: waterfall-drop" stress --scene nope --out "$tmp/k"
 expect "'time.cfl': 0.9 is outside the valid range [0.01, 0.4]" stress --scene cliffs --set time.cfl=0.9 --out "$tmp/l"
 expect "--threads" study --threads 0 --out "$tmp/m"
+# Every number that scales an allocation goes through the one estimate: --set, --scale, a preset.
+expect "canyon: sources[0].radius: a disk of radius 0.06 m holds about" run canyon --headless --steps 1 --set fluid.spacing=0.0001 --out "$tmp/n"
+expect "the memory limit of 16 GB allows" run canyon --headless --steps 1 --scale 1000 --out "$tmp/o"
+expect "lake: sources[0].rate: 0.02 m³/s is 4.23e+05 particles per step of 0.002 s" run lake --headless --steps 1 --set fluid.spacing=0.0005 --out "$tmp/p"
+expect "rain: rain[0].intensity_mm_h: 2000 mm/h over the rectangle's 3.24 m² on the terrain is 6.67e+05 drops per step" run rain --headless --steps 1 --set time.fixed_dt=0.01 --set fluid.spacing=0.0003 --out "$tmp/q"
+expect "--resume: " run --resume / --headless --steps 2 --out "$tmp/r"
+expect "is a directory, not a scene file" run "$tmp/" --headless --steps 2 --out "$tmp/s"
+expect "--scale" run dambreak --headless --steps 5 --scale 1e999 --out "$tmp/t"
+expect "--time" run dambreak --headless --time 1e999 --out "$tmp/u"
 left=$(find "$tmp" -mindepth 1 | head -5)
 if [ -n "$left" ]; then echo "FAIL: files left behind: $left"; fail=1; fi
 exit $fail

@@ -78,6 +78,15 @@ set -e
 grep -q "invariant violated at step " <<<"$msg" || { echo "message: $msg"; exit 1; }
 python3 -c "import json,sys; s=json.load(open('$tmp/bad/summary.json')); assert s['status']=='invariant_violated' and 'particle' in s['error'], s"
 echo "invariant violation reported: $(head -1 <<<"$msg")"
+# A blow-up from a fixed step 40× the CFL step flings particles kilometres away: the run stops
+# with exit 3 and a summary (before, the neighbor grid of the flung particles ran out of memory).
+set +e
+msg=$("$scour" run dambreak --scale 0.2 --headless --steps 300 --set time.fixed_dt=0.002 --out "$tmp/blow" 2>&1)
+rc=$?
+set -e
+[ $rc -eq 3 ] || { echo "blow-up: expected exit 3, got $rc: $msg"; exit 1; }
+python3 -c "import json,sys; s=json.load(open('$tmp/blow/summary.json')); assert s['status']=='invariant_violated' and ('simulation box' in s['error'] or 'non-finite' in s['error']), s"
+echo "blow-up stopped: $(head -1 <<<"$msg" | cut -c1-160)"
 # --set edits the scene before it is built: a new spacing refills the water at that spacing.
 "$scour" run dambreak --headless --steps 1 --set fluid.spacing=0.0057 --out "$tmp/sp" >/dev/null
 python3 - "$tmp/sp/summary.json" <<'PY'

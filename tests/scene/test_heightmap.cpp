@@ -98,8 +98,12 @@ TEST_CASE("8-bit PNG and raw float heightmaps import; bad ones are refused", "[h
   CHECK_THAT(refusal((d / "truncated.png").string()), Catch::Contains("truncated.png: cannot decode") ||
                                                          Catch::Contains("not a readable image"));
   CHECK_THAT(refusal((d / "empty.png").string()), Catch::Contains("not a readable image"));
-  CHECK_THAT(refusal((d / "r.r32").string(), 0), Catch::Contains("needs terrain.raw_width"));
-  CHECK_THAT(refusal((d / "r.r32").string(), 9), Catch::Contains("fewer than raw_width × raw_height"));
+  CHECK_THAT(refusal((d / "r.r32").string(), 0), Catch::Contains("needs terrain.raw_size [width, height]"));
+  CHECK_THAT(refusal((d / "r.r32").string(), 9),
+             Catch::Contains("holds 48 bytes, but terrain.raw_size [9, 3] of float32 values is 108 bytes"));
+  CHECK_THAT(refusal((d / "r.r32").string(), 2),  // a longer file is another size, not a crop
+             Catch::Contains("holds 48 bytes, but terrain.raw_size [2, 3] of float32 values is 24 bytes"));
+  CHECK_THAT(refusal(d.string()), Catch::Contains("is a directory, not a heightmap"));
   TerrainSpec crop = heightmap((d / "g.png").string());
   crop.crop_x = 3, crop.crop_w = 4;
   CHECK_THROWS_WITH(buildTerrain(crop), Catch::Contains("does not fit the 4 × 3 image"));

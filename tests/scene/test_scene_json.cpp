@@ -62,7 +62,20 @@ TEST_CASE("the reader names the field, what it expected and what it found", "[sc
              Catch::Contains("version: required field is missing"));
   CHECK_THAT(error([](json& j) { j["version"] = 2; }), Catch::Contains("version: expected"));
   CHECK_THAT(error([](json& j) { j["params"]["fluid"]["spacing"] = 1e-4; }),
-             Catch::Contains("water.blocks") && Catch::Contains("particles at spacing"));
+             Catch::Contains("sources[0].radius: a disk of radius 0.05 m holds about 1e+06 particle slots"));
+  // A block filled above the terrain is counted once the terrain is built (buildScene).
+  CHECK(error([](json& j) { j["params"]["fluid"]["spacing"] = 1e-4, j["sources"] = json::array(); }) ==
+        "(accepted)");
+  SceneSpec fine = presetSpec("default", 0.3);
+  fine.params.spacing = 1e-4, fine.sources.clear();
+  CHECK_THROWS_WITH(buildScene(fine), Catch::Contains("water.blocks: ") &&
+                                          Catch::Contains("particles at spacing 0.0001 m") &&
+                                          Catch::Contains("the memory limit of 16 GB allows"));
+  CHECK_THAT(error([](json& j) { j["params"]["fluid"]["spacing"] = 1e-4, j["sources"] = json::array(),
+                                 j["water"]["blocks"][0]["above_terrain"] = false; }),
+             Catch::Contains("water.blocks: ") && Catch::Contains("the memory limit of 16 GB allows"));
+  CHECK_THAT(error([](json& j) { j["sources"][0]["rate"] = 1e4; }),
+             Catch::Contains("sources[0].rate: 10000 m³/s is") && Catch::Contains("more than the 2e+05 one step may place"));
   CHECK_THAT(error([](json& j) { j["sources"][0]["direction"] = json::array({0, 0, 0}); }),
              Catch::Contains("sources[0].direction: must not be the zero vector"));
   CHECK(error([](json&) {}) == "(accepted)");
