@@ -4,6 +4,7 @@
 #include <string>
 #include <vector>
 
+#include "app/replay.h"
 #include "scene/presets.h"
 
 namespace scour {
@@ -23,13 +24,6 @@ struct AppOptions {
   Stats* stats = nullptr;    ///< filled on closing when set
 };
 
-/// One scripted event: at frame `frame`, an action with its words ("click 320 200").
-struct ReplayEvent {
-  long frame;
-  std::vector<std::string> words;
-};
-/// Reads a replay file; throws std::invalid_argument naming the file, line and problem.
-std::vector<ReplayEvent> readReplay(const std::string& path);
 
 /// Opens the window on the scene and runs until it is closed. Throws GlError if no window can
 /// be made.

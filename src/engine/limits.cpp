@@ -1,5 +1,7 @@
 #include "engine/limits.h"
 
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 
 namespace scour {
@@ -23,7 +25,15 @@ std::string checkSourceWork(const Source& s, const SimParams& p, const std::stri
                   at.c_str(), s.rate, placed, dt, p.spacing, Limits::kMaxPlacedPerStep);
     return msg;
   }
-  return {};
+  // Within the bound the slots are few: count them as Emitter makes them.
+  const int r = int(std::ceil(s.radius / p.spacing));
+  double exact = 0;
+  for (int b = -r; b <= r; ++b)
+    for (int a = -r; a <= r; ++a) {
+      const double u = a * p.spacing, w = b * p.spacing;
+      exact += u * u + w * w <= s.radius * s.radius + 1e-12;
+    }
+  return checkSourceSpeed(s, p, std::max(exact, 1.0), at);
 }
 
 std::string checkSourceSpeed(const Source& s, const SimParams& p, double slots, const std::string& at) {

@@ -58,12 +58,13 @@ inline double rainPlacedPerStep(const Rain& r, double area, double spacing, doub
   return r.intensity_mm_h / 3.6e6 * area * dt / (spacing * spacing * spacing) + 1;
 }
 
-/// Checks a source against the limits (before its slots are made): "" or what is wrong, naming
-/// `at` (e.g. "sources[2]"). The exit speed Q / (slots·Δs²) must stay below the sound speed: the
-/// weakly compressible fluid cannot carry a faster jet, and a layer would be due every step.
+/// Checks a source against the limits (without making its slots): "" or what is wrong, naming
+/// `at` (e.g. "sources[2]"): its slots and the particles it places per step, and its exit speed
+/// Q / (slots·Δs²), which must stay below the sound speed: the weakly compressible fluid cannot
+/// carry a faster jet, and a layer would be due every step.
 std::string checkSourceWork(const Source& s, const SimParams& p, const std::string& at);
 
-/// The same for the slots once made (exact count): the exit speed against the sound speed.
+/// The exit speed alone, for `slots` slots.
 std::string checkSourceSpeed(const Source& s, const SimParams& p, double slots, const std::string& at);
 
 }  // namespace scour

@@ -56,7 +56,7 @@ struct PairGeometry {
 struct PairFlux {
   float kSettle, kDiffuse, kPrinted, invHm, fCoef;
   PairFlux(const SedimentConstants& k, bool settle, bool diffuse, bool printed)
-      : kSettle(settle ? float(2.0 * k.volume * k.volume * k.vs0) : 0.0f),
+      : kSettle(settle ? float(2.0 * k.volume * k.volume * std::abs(k.vs0)) : 0.0f),
         kDiffuse(diffuse ? float(2.0 * k.diffusion * k.volume * k.volume) : 0.0f),
         kPrinted(printed ? float(k.volume * k.mass * k.diffusion) : 0.0f),
         invHm(float(1.0 / k.spline.hm)),
@@ -89,7 +89,8 @@ struct PairFlux {
 // Eq. (20) with the doubled eq. (16) flux: donor fluid particle above a boundary particle (which
 // holds no sediment, f = 1).
 double depositFlux(const SedimentConstants& k, double cd, double dy, double r) {
-  if (r <= 0.0 || dy <= 0.0 || cd <= 0.0) return 0.0;
+  // Grains lighter than water rise (v_s < 0): they never reach the bed below.
+  if (r <= 0.0 || dy <= 0.0 || cd <= 0.0 || k.vs0 <= 0.0) return 0.0;
   return 2.0 * k.volume * k.volume * cd * k.vs0 * (dy / r) * (-k.spline.F(r));
 }
 
@@ -112,6 +113,8 @@ void transferSediment(const SedimentConstants& k, const SedimentEffects& fx,
   const double V = k.volume, room = k.c_max * V;
   const bool naive = fx.settling && k.advection == 1;
   const bool printed = fx.diffusion && k.diffusion_form == 1;
+  // v_s < 0 (ρs < ρ0): the donor–acceptor flux runs upwards at |v_s| (model.md).
+  const bool rising = k.vs0 < 0.0;
   const PairFlux pair(k, fx.settling && !naive, fx.diffusion && !printed, printed);
   // Naive advection: ds_i = V Δt v_s0 f(C_i) ∂C/∂y, ∂C/∂y = Σ_j V (C_j − C_i) F dy/r (F = −|F|).
   const double naiveCoef = naive ? V * V * k.vs0 : 0.0;
@@ -166,8 +169,11 @@ void transferSediment(const SedimentConstants& k, const SedimentEffects& fx,
           if (printed) g.diffuse = pair.printedDiffusion((f.x[i] - f.x[j]).norm(), f.rho[i], f.rho[j]);
           // The symmetric-difference gradient Σ_j V (C_j − C_i) ∇W_ij, y component over −V.
           if (naive) grad += double(cj - ci) * double(fri[c]) * double(dy);
-          const double gain = PairFlux::flux(g, cj, ci, hind[i], dy < 0.0) * dt;
-          const double loss = PairFlux::flux(g, ci, cj, hind[j], dy > 0.0) * dt;
+          // Settling carries sediment down the pair (up, for grains lighter than water).
+          const bool iDownstream = rising ? dy > 0.0f : dy < 0.0f;
+          const bool jDownstream = rising ? dy < 0.0f : dy > 0.0f;
+          const double gain = PairFlux::flux(g, cj, ci, hind[i], iDownstream) * dt;
+          const double loss = PairFlux::flux(g, ci, cj, hind[j], jDownstream) * dt;
           // Unscaled, the factors are being written by other threads: read none of them.
           d += scaled ? gain * std::min(scale[j].out, scale[i].in) : gain;
           d -= scaled ? loss * std::min(scale[i].out, scale[j].in) : loss;

@@ -1,0 +1,36 @@
+// Heightmap files on any bytes: the first byte chooses a PNG (decoded from the header on) or a
+// raw float32 .r32 of a size from the next two bytes. Refused (TerrainError) or built, nothing else.
+#include <unistd.h>
+
+#include <cstdint>
+#include <fstream>
+#include <string>
+
+#include "scene/presets.h"
+
+using namespace scour;
+
+extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
+  if (size < 3) return 0;
+  static const std::string dir = [] {
+    char tmpl[] = "/tmp/scour_fuzz_hm_XXXXXX";
+    return std::string(mkdtemp(tmpl));
+  }();
+  const bool raw = data[0] & 1;
+  const std::string path = dir + (raw ? "/h.r32" : "/h.png");
+  {
+    std::ofstream out(path, std::ios::binary | std::ios::trunc);
+    out.write(reinterpret_cast<const char*>(data + 3), std::streamsize(size - 3));
+  }
+  TerrainSpec t;
+  t.kind = "heightmap";
+  t.file = path;
+  t.length_x = t.length_z = 1.0;
+  t.cell = 0.1;
+  if (raw) t.raw_width = 1 + data[1] % 64, t.raw_height = 1 + data[2] % 64;
+  try {
+    buildTerrain(t);
+  } catch (const TerrainError&) {
+  }
+  return 0;
+}

@@ -1,0 +1,35 @@
+// The scene reader on any bytes: it must refuse (SceneError) or accept, never crash, leak, hang or
+// allocate without bound. An accepted scene small enough to build is built and its World made,
+// so the reader's checks and the World's stay one set (a scene the reader accepts, the World
+// accepts).
+#include <cstdint>
+#include <string>
+
+#include "scene/presets.h"
+#include "scene/scene_json.h"
+
+using namespace scour;
+
+extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
+  const std::string text(reinterpret_cast<const char*>(data), size);
+  SceneSpec spec;
+  try {
+    spec = specFromJson(parseJsonText(text, "fuzz.json"), "fuzz.json");
+  } catch (const SceneError&) {
+    return 0;
+  }
+  // Only scenes that take milliseconds: the fuzzer measures the reader, not the engine.
+  if (spec.terrain.kind == "heightmap") return 0;  // no files from fuzzed paths
+  const Footprint f = estimateFootprint(spec);
+  if (f.unknown || f.vertices > 2e4 || f.particles > 2e4) return 0;
+  try {
+    World w(buildScene(spec).desc);
+    w.step();
+  } catch (const SceneError&) {
+  } catch (const TerrainError&) {
+  } catch (const InvariantViolation&) {
+  } catch (const LimitExceeded&) {
+  }
+  // std::invalid_argument from the World is not caught: the reader should have refused it.
+  return 0;
+}
