@@ -19,6 +19,7 @@ struct StressOptions {
   std::string out;
   std::string trace;
   std::vector<std::string> sets;
+  long paper = 0;
 };
 
 int stress(const StressOptions& o) {
@@ -30,8 +31,13 @@ int stress(const StressOptions& o) {
   setThreads(o.threads);
   std::vector<StressScene> scenes;
   try {
-    for (const std::string& n : o.scenes.empty() ? stressSceneNames() : o.scenes)
-      scenes.push_back(stressScene(n));
+    if (o.paper > 0) {
+      if (!o.scenes.empty()) throw InputError("--paper: runs the paper's scenes; drop --scene");
+      scenes = paperStressScenes(o.paper);
+    } else {
+      for (const std::string& n : o.scenes.empty() ? stressSceneNames() : o.scenes)
+        scenes.push_back(stressScene(n));
+    }
   } catch (const std::invalid_argument& e) {
     throw InputError(std::string("--scene: ") + e.what());
   }
@@ -88,6 +94,10 @@ Command addStressCommand(CLI::App& app) {
   c->add_option("--out", o->out, "Also write stress.csv and stress.md into this directory");
   c->add_option("--trace", o->trace, "Write a per-step energy trace <scene>.csv into this directory");
   c->add_flag("--quiet", o->quiet, "No progress lines on stderr");
+  c->add_option("--paper", o->paper,
+                "Instead: the paper's canyon, lake and waterfall at full size for N steps each "
+                "(minutes; not in CI)")
+      ->check(kPositive);
   return [o] { return stress(*o); };
 }
 

@@ -366,6 +366,20 @@ StressScene stressScene(const std::string& name) {
   throw std::invalid_argument("unknown stress scene '" + name + "' (valid: " + valid + ")");
 }
 
+std::vector<StressScene> paperStressScenes(long steps) {
+  std::vector<StressScene> out;
+  for (const char* name : {"canyon", "lake", "waterfall"}) {
+    StressScene s;
+    s.name = std::string("paper-") + name;
+    s.spec = presetSpec(name);
+    s.description = "the paper's " + std::string(name) + " at full size, " + std::to_string(steps) + " steps";
+    s.duration = 1e9;
+    s.max_steps = steps;
+    out.push_back(std::move(s));
+  }
+  return out;
+}
+
 StressResult runStress(const StressScene& scene, const StressLimits& limits,
                        const std::function<void(const StressResult&)>& progress,
                        std::ostream* trace) {
@@ -393,7 +407,7 @@ StressResult runStress(const StressScene& scene, const StressLimits& limits,
   auto fail = [&](const std::string& what) {
     if (r.pass) r.pass = false, r.failure = what;
   };
-  while (world.time() < scene.duration && r.pass) {
+  while (world.time() < scene.duration && r.pass && (scene.max_steps <= 0 || r.steps < scene.max_steps)) {
     for (size_t j = 0; j < scene.jumps.size(); ++j) {
       if (jumped[j] || world.time() < scene.jumps[j].time) continue;
       jumped[j] = true;

@@ -40,6 +40,7 @@ struct StressScene {
   std::string name, description;
   SceneSpec spec;
   double duration = 1.0;  ///< simulated seconds
+  long max_steps = 0;     ///< > 0: stop after this many steps, whichever comes first
   std::vector<ParamJump> jumps;
 };
 
@@ -47,6 +48,9 @@ struct StressScene {
 const std::vector<std::string>& stressSceneNames();
 /// Throws std::invalid_argument naming the valid scenes for an unknown name.
 StressScene stressScene(const std::string& name);
+/// The paper's canyon, lake and waterfall at full size, `steps` steps each, as stress scenes
+/// (`scour stress --paper`; minutes each, not in CI).
+std::vector<StressScene> paperStressScenes(long steps);
 
 struct StressLimits {
   double penetration_over_ds = 0.5;

@@ -39,6 +39,8 @@ expect "--resume: " run --resume / --headless --steps 2 --out "$tmp/r"
 expect "is a directory, not a scene file" run "$tmp/" --headless --steps 2 --out "$tmp/s"
 expect "--scale" run dambreak --headless --steps 5 --scale 1e999 --out "$tmp/t"
 expect "--time" run dambreak --headless --time 1e999 --out "$tmp/u"
+expect "--paper: runs the paper's scenes; drop --scene" stress --paper 5 --scene cliffs
+expect "--paper" stress --paper 0
 left=$(find "$tmp" -mindepth 1 | head -5)
 if [ -n "$left" ]; then echo "FAIL: files left behind: $left"; fail=1; fi
 exit $fail
