@@ -9,6 +9,16 @@
 
 using namespace scour;
 
+namespace {
+// The one particle a sediment lattice starts with sediment in.
+size_t loadedParticle(const Fluid& f) {
+  size_t source = 0;
+  for (size_t i = 0; i < f.size(); ++i)
+    if (f.sed[i] > 0) source = i;
+  return source;
+}
+}  // namespace
+
 
 TEST_CASE("settling moves sediment down at the settling speed", "[sediment][settling]") {
   Scene s = makePreset("settling");
@@ -17,9 +27,7 @@ TEST_CASE("settling moves sediment down at the settling speed", "[sediment][sett
   const double vs = p.settlingSpeed(), h = p.support();
   const double s0 = suspendedSediment(w);
   const Fluid& f = w.fluid();
-  size_t source = 0;
-  for (size_t i = 0; i < f.size(); ++i)
-    if (f.sed[i] > 0) source = i;
+  const size_t source = loadedParticle(f);
   const float ySource = f.x[source].y();
   auto centroid = [&] { return sedimentCentroid(w).y(); };
   // Away from the bottom: between one h below the start and 3h above the floor.
@@ -56,9 +64,7 @@ TEST_CASE("grains lighter than water rise at the settling speed, and the budget 
   REQUIRE(vs < 0);
   const double s0 = suspendedSediment(w);
   const Fluid& f = w.fluid();
-  size_t source = 0;
-  for (size_t i = 0; i < f.size(); ++i)
-    if (f.sed[i] > 0) source = i;
+  const size_t source = loadedParticle(f);
   const float ySource = f.x[source].y();
   auto centroid = [&] { return sedimentCentroid(w).y(); };
   std::vector<std::pair<double, double>> samples;
