@@ -36,51 +36,37 @@ SurfacePoint Heightfield::surface(double x, double z) const {
   return {h, n.normalized(), 2 * (k * (nx_ - 1) + i) + t};
 }
 
-// The point of triangle abc nearest to p (Ericson, Real-Time Collision Detection, §5.1.5).
-Eigen::Vector3d closestPointOnTriangle(const Eigen::Vector3d& p, const Eigen::Vector3d& a,
-                                       const Eigen::Vector3d& b, const Eigen::Vector3d& c) {
-  const Eigen::Vector3d ab = b - a, ac = c - a, ap = p - a;
-  const double d1 = ab.dot(ap), d2 = ac.dot(ap);
-  if (d1 <= 0 && d2 <= 0) return a;
-  const Eigen::Vector3d bp = p - b;
-  const double d3 = ab.dot(bp), d4 = ac.dot(bp);
-  if (d3 >= 0 && d4 <= d3) return b;
-  const double vc = d1 * d4 - d3 * d2;
-  if (vc <= 0 && d1 >= 0 && d3 <= 0) return a + d1 / (d1 - d3) * ab;
-  const Eigen::Vector3d cp = p - c;
-  const double d5 = ab.dot(cp), d6 = ac.dot(cp);
-  if (d6 >= 0 && d5 <= d6) return c;
-  const double vb = d5 * d2 - d1 * d6;
-  if (vb <= 0 && d2 >= 0 && d6 <= 0) return a + d2 / (d2 - d6) * ac;
-  const double va = d3 * d6 - d5 * d4;
-  if (va <= 0 && d4 - d3 >= 0 && d5 - d6 >= 0) return b + (d4 - d3) / ((d4 - d3) + (d5 - d6)) * (c - b);
-  const double den = 1.0 / (va + vb + vc);
-  return a + ab * (vb * den) + ac * (vc * den);
-}
-
 double pointTriangleDistance(const Eigen::Vector3d& p, const Eigen::Vector3d& a,
                              const Eigen::Vector3d& b, const Eigen::Vector3d& c) {
-  return (p - closestPointOnTriangle(p, a, b, c)).norm();
+  const Eigen::Vector3d ab = b - a, ac = c - a, ap = p - a;
+  const double d1 = ab.dot(ap), d2 = ac.dot(ap);
+  if (d1 <= 0 && d2 <= 0) return ap.norm();
+  const Eigen::Vector3d bp = p - b;
+  const double d3 = ab.dot(bp), d4 = ac.dot(bp);
+  if (d3 >= 0 && d4 <= d3) return bp.norm();
+  const double vc = d1 * d4 - d3 * d2;
+  if (vc <= 0 && d1 >= 0 && d3 <= 0) return (p - (a + d1 / (d1 - d3) * ab)).norm();
+  const Eigen::Vector3d cp = p - c;
+  const double d5 = ab.dot(cp), d6 = ac.dot(cp);
+  if (d6 >= 0 && d5 <= d6) return cp.norm();
+  const double vb = d5 * d2 - d1 * d6;
+  if (vb <= 0 && d2 >= 0 && d6 <= 0) return (p - (a + d2 / (d2 - d6) * ac)).norm();
+  const double va = d3 * d6 - d5 * d4;
+  if (va <= 0 && d4 - d3 >= 0 && d5 - d6 >= 0)
+    return (p - (b + (d4 - d3) / ((d4 - d3) + (d5 - d6)) * (c - b))).norm();
+  const double den = 1.0 / (va + vb + vc);
+  return (p - (a + ab * (vb * den) + ac * (vc * den))).norm();
 }
 
 double Heightfield::distanceToSurface(const Eigen::Vector3d& p) const {
-  return (p - nearestSurfacePoint(p)).norm();
-}
-
-Eigen::Vector3d Heightfield::nearestSurfacePoint(const Eigen::Vector3d& p) const {
   const int ci = std::clamp(int(std::floor((p.x() - x0_) / dx_)), 0, nx_ - 2);
   const int ck = std::clamp(int(std::floor((p.z() - z0_) / dz_)), 0, nz_ - 2);
   double best = std::numeric_limits<double>::infinity();
-  Eigen::Vector3d nearest = p;
   for (int k = std::max(ck - 1, 0); k <= std::min(ck + 1, nz_ - 2); ++k)
     for (int i = std::max(ci - 1, 0); i <= std::min(ci + 1, nx_ - 2); ++i)
-      for (int t = 0; t < 2; ++t) {
-        const auto c = triangleCorners(2 * (k * (nx_ - 1) + i) + t);
-        const Eigen::Vector3d q = closestPointOnTriangle(p, c[0], c[1], c[2]);
-        const double d = (p - q).squaredNorm();
-        if (d < best) best = d, nearest = q;
-      }
-  return nearest;
+      for (int t = 0; t < 2; ++t)
+        best = std::min(best, distanceToTriangle(2 * (k * (nx_ - 1) + i) + t, p));
+  return best;
 }
 
 std::array<std::array<int, 2>, 3> Heightfield::triangleVertices(int tri) const {

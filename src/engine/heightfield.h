@@ -57,8 +57,6 @@ class Heightfield {
   }
   /// Distance from p to the surface: the nearest of the triangles of the 3 × 3 cells around p's
   /// cell (enough for a point within a cell of the surface) [m].
-  /// The nearest point of the surface to p among the triangles of the 3 × 3 cells around it.
-  Eigen::Vector3d nearestSurfacePoint(const Eigen::Vector3d& p) const;
   double distanceToSurface(const Eigen::Vector3d& p) const;
   /// The three corners (x, h, z) of a triangle.
   std::array<Eigen::Vector3d, 3> triangleCorners(int tri) const;

@@ -1,7 +1,5 @@
 #include "engine/limits.h"
 
-#include <algorithm>
-#include <cmath>
 #include <cstdio>
 
 namespace scour {
@@ -25,15 +23,20 @@ std::string checkSourceWork(const Source& s, const SimParams& p, const std::stri
                   at.c_str(), s.rate, placed, dt, p.spacing, Limits::kMaxPlacedPerStep);
     return msg;
   }
-  // Within the bound the slots are few: count them as Emitter makes them.
-  const int r = int(std::ceil(s.radius / p.spacing));
-  double exact = 0;
-  for (int b = -r; b <= r; ++b)
-    for (int a = -r; a <= r; ++a) {
-      const double u = a * p.spacing, w = b * p.spacing;
-      exact += u * u + w * w <= s.radius * s.radius + 1e-12;
-    }
-  return checkSourceSpeed(s, p, std::max(exact, 1.0), at);
+  // Within the bound the slots are few: the exact count, as Emitter makes them.
+  return checkSourceSpeed(s, p, double(diskLattice(s.radius, p.spacing).size()), at);
+}
+
+std::string checkRainWork(const Rain& r, double area, const SimParams& p, const std::string& at) {
+  const double dt = longestStep(p);
+  const double drops = rainPlacedPerStep(r, area, p.spacing, dt);
+  if (drops <= Limits::kMaxPlacedPerStep) return {};
+  char msg[400];
+  std::snprintf(msg, sizeof msg,
+                "%s.intensity_mm_h: %g mm/h over the rectangle's %.3g m² on the terrain is %.3g drops "
+                "per step of %g s at spacing %g m, more than the %.3g one step may place",
+                at.c_str(), r.intensity_mm_h, area, drops, dt, p.spacing, Limits::kMaxPlacedPerStep);
+  return msg;
 }
 
 std::string checkSourceSpeed(const Source& s, const SimParams& p, double slots, const std::string& at) {

@@ -53,6 +53,13 @@ inline double sourcePlacedPerStep(const Source& s, double spacing, double slots,
   return s.rate * dt / (spacing * spacing * spacing) + slots;
 }
 
+/// The part of a rain's rectangle over the terrain [x0, x1] × [z0, z1] [m²].
+inline double rainArea(const Rain& r, double x0, double x1, double z0, double z1) {
+  const double w = std::min(r.hi_x, x1) - std::max(r.lo_x, x0);
+  const double d = std::min(r.hi_z, z1) - std::max(r.lo_z, z0);
+  return w > 0 && d > 0 ? w * d : 0.0;
+}
+
 /// Drops a rain over `area` [m²] places in one step of at most `dt`.
 inline double rainPlacedPerStep(const Rain& r, double area, double spacing, double dt) {
   return r.intensity_mm_h / 3.6e6 * area * dt / (spacing * spacing * spacing) + 1;
@@ -63,6 +70,10 @@ inline double rainPlacedPerStep(const Rain& r, double area, double spacing, doub
 /// Q / (slots·Δs²), which must stay below the sound speed: the weakly compressible fluid cannot
 /// carry a faster jet, and a layer would be due every step.
 std::string checkSourceWork(const Source& s, const SimParams& p, const std::string& at);
+
+/// Checks a rain over `area` m² of terrain (rainArea): "" or, naming `at`, that it places more
+/// drops per step than the limit. (A rectangle that misses the terrain is the caller's to refuse.)
+std::string checkRainWork(const Rain& r, double area, const SimParams& p, const std::string& at);
 
 /// The exit speed alone, for `slots` slots.
 std::string checkSourceSpeed(const Source& s, const SimParams& p, double slots, const std::string& at);

@@ -4,6 +4,18 @@
 
 namespace scour {
 
+std::vector<Eigen::Vector2d> diskLattice(double radius, double spacing) {
+  std::vector<Eigen::Vector2d> points;
+  const int r = int(std::ceil(radius / spacing));
+  for (int b = -r; b <= r; ++b)
+    for (int a = -r; a <= r; ++a) {
+      const double u = a * spacing, w = b * spacing;
+      if (u * u + w * w <= radius * radius + 1e-12) points.emplace_back(u, w);
+    }
+  if (points.empty()) points.emplace_back(0.0, 0.0);
+  return points;
+}
+
 Emitter::Emitter(const Source& s, double spacing) : src(s) {
   src.direction.normalize();
   // An orthonormal basis (e1, e2) of the disk plane.
@@ -11,13 +23,7 @@ Emitter::Emitter(const Source& s, double spacing) : src(s) {
                                                               : Eigen::Vector3d::UnitX();
   Eigen::Vector3d e1 = src.direction.cross(helper).normalized();
   Eigen::Vector3d e2 = src.direction.cross(e1);
-  int r = int(std::ceil(src.radius / spacing));
-  for (int b = -r; b <= r; ++b)
-    for (int a = -r; a <= r; ++a) {
-      double u = a * spacing, w = b * spacing;
-      if (u * u + w * w <= src.radius * src.radius + 1e-12) slots.push_back(u * e1 + w * e2);
-    }
-  if (slots.empty()) slots.push_back(Eigen::Vector3d::Zero());
+  for (const Eigen::Vector2d& uw : diskLattice(src.radius, spacing)) slots.push_back(uw.x() * e1 + uw.y() * e2);
   speed = src.rate / (double(slots.size()) * spacing * spacing);
   travelled = spacing;  // the first layer is due at the start time
 }

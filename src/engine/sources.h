@@ -60,6 +60,10 @@ struct RainState {
   static std::pair<double, double> point(uint64_t seed, uint64_t k);
 };
 
+/// The slots of a source's disk: the points (u, w) of the square lattice of spacing Δs within
+/// `radius` of its centre, in the disk plane; at least the centre.
+std::vector<Eigen::Vector2d> diskLattice(double radius, double spacing);
+
 /// Emission state of one source.
 struct Emitter {
   Source src;

@@ -67,8 +67,7 @@ void require(bool ok, const std::string& what) {
   if (!ok) throw std::invalid_argument(what);
 }
 
-// A source is checked against the limits before its slots are made, and its exit speed once
-// they are (engine/limits.h).
+// A source is checked against the limits (engine/limits.h) before its slots are made.
 Emitter makeEmitter(const Source& src, const SimParams& p, const std::string& at) {
   require(src.radius > 0 && std::isfinite(src.radius), at + ".radius must be positive");
   require(src.rate > 0 && std::isfinite(src.rate), at + ".rate must be positive");
@@ -125,11 +124,8 @@ World::World(WorldDesc d)
             at + ".drop_height must be finite and ≥ 0");
     require(std::isfinite(rn.drop_speed), at + ".drop_speed must be finite");
     require(rainArea(rn) > 0, at + ": the rectangle does not overlap the terrain");
-    const double drops = rainPlacedPerStep(rn, rainArea(rn), p_.spacing, longestStep(p_));
-    require(drops <= Limits::kMaxPlacedPerStep,
-            at + ".intensity_mm_h: " + std::to_string(long(drops)) +
-                " drops per step at this spacing, more than the limit of " +
-                std::to_string(long(Limits::kMaxPlacedPerStep)));
+    const std::string bad = checkRainWork(rn, rainArea(rn), p_, at);
+    require(bad.empty(), bad);
     rain_.push_back(RainState{rn, 0.0, 0, 0, 0});
   }
   require(d.pressure.empty() || d.pressure.size() == d.particles.size(),
@@ -269,9 +265,7 @@ void World::removeParticles() {
 }
 
 double World::rainArea(const Rain& r) const {
-  const double w = std::min(r.hi_x, hf_.xMax()) - std::max(r.lo_x, hf_.x0());
-  const double d = std::min(r.hi_z, hf_.zMax()) - std::max(r.lo_z, hf_.z0());
-  return w > 0 && d > 0 ? w * d : 0.0;
+  return scour::rainArea(r, hf_.x0(), hf_.xMax(), hf_.z0(), hf_.zMax());
 }
 
 void World::simulationBox() {
@@ -427,10 +421,10 @@ void World::setParams(const SimParams& q) {
     const std::string bad = checkSourceWork(emitters_[i].src, q, at);
     require(bad.empty(), bad);
   }
-  for (size_t r = 0; r < rain_.size(); ++r)
-    require(rainPlacedPerStep(rain_[r].rain, rainArea(rain_[r].rain), q.spacing, longestStep(q)) <=
-                Limits::kMaxPlacedPerStep,
-            "rain[" + std::to_string(r) + "]: more drops per step than the limit at this time step");
+  for (size_t r = 0; r < rain_.size(); ++r) {
+    const std::string bad = checkRainWork(rain_[r].rain, rainArea(rain_[r].rain), q, "rain[" + std::to_string(r) + "]");
+    require(bad.empty(), bad);
+  }
   p_ = resolve(q);
   k_ = SphConstants(p_);
   simulationBox();

@@ -14,23 +14,11 @@ namespace {
 
 std::string indexed(const char* list, size_t k) { return std::string(list) + "[" + std::to_string(k) + "]"; }
 
-// The whole lattice cells of spacing Δs that fit a block, per axis (as buildScene fills them).
-Eigen::Vector3d latticeCells(const WaterBlock& b, double ds) {
-  return ((b.max - b.min) / ds + Eigen::Vector3d::Constant(1e-6)).array().floor();
-}
-
 template <class... A>
 std::string format(const char* fmt, A... a) {
   char buf[400];
   std::snprintf(buf, sizeof buf, fmt, a...);
   return buf;
-}
-
-// The part of a rain rectangle over a terrain of extent lx × lz from the origin [m²].
-double overlap(const Rain& r, double lx, double lz) {
-  const double w = std::min(r.hi_x, lx) - std::max(r.lo_x, 0.0);
-  const double d = std::min(r.hi_z, lz) - std::max(r.lo_z, 0.0);
-  return w > 0 && d > 0 ? w * d : 0.0;
 }
 
 }  // namespace
@@ -43,7 +31,7 @@ Footprint estimateFootprint(const SceneSpec& s, const Heightfield* terrain) {
                (std::max(1.0, std::round(t.length_z / t.cell)) + 1);
   for (const WaterBlock& b : s.blocks) {
     if (!b.above_terrain && !b.flood) {
-      const Eigen::Vector3d n = latticeCells(b, ds);
+      const Eigen::Vector3d n = blockLattice(b, ds);
       f.particles += n.x() * n.y() * n.z();
     } else if (terrain) {
       // Water over the terrain: each vertex's column from Δs/2 above the ground to the top,
@@ -80,16 +68,10 @@ void checkFootprint(const SceneSpec& s, const Heightfield* terrain) {
     const std::string bad = checkSourceWork(s.sources[k], s.params, indexed("sources", k));
     if (!bad.empty()) throw SceneError(bad);
   }
-  const double dt = longestStep(s.params);
   for (size_t k = 0; k < s.rain.size(); ++k) {
-    const double drops = rainPlacedPerStep(s.rain[k], overlap(s.rain[k], s.terrain.length_x, s.terrain.length_z),
-                                           ds, dt);
-    if (drops > Limits::kMaxPlacedPerStep)
-      throw SceneError(format("%s.intensity_mm_h: %g mm/h over the rectangle's %.3g m² on the terrain is "
-                              "%.3g drops per step of %g s at spacing %g m, more than the %.3g one step may place",
-                              indexed("rain", k).c_str(), s.rain[k].intensity_mm_h,
-                              overlap(s.rain[k], s.terrain.length_x, s.terrain.length_z), drops, dt, ds,
-                              Limits::kMaxPlacedPerStep));
+    const double area = rainArea(s.rain[k], 0.0, s.terrain.length_x, 0.0, s.terrain.length_z);
+    const std::string bad = checkRainWork(s.rain[k], area, s.params, indexed("rain", k));
+    if (!bad.empty()) throw SceneError(bad);
   }
 }
 
@@ -124,7 +106,7 @@ void checkGeometry(const SceneSpec& s, const Heightfield& hf) {
                        format("y = %g m is %.3g m below the terrain there (%g m)", c.y(), ground - c.y(), ground));
   }
   for (size_t k = 0; k < s.rain.size(); ++k)
-    if (overlap(s.rain[k], x1, z1) <= 0)
+    if (rainArea(s.rain[k], x0, x1, z0, z1) <= 0)
       throw SceneError(indexed("rain", k) + ": the rectangle " +
                        format("[%g, %g] × [%g, %g]", s.rain[k].lo_x, s.rain[k].hi_x, s.rain[k].lo_z, s.rain[k].hi_z) +
                        " does not overlap the terrain " + rect);

@@ -70,6 +70,10 @@ void damBreakTank(SceneSpec& s, double a, double spacing, double tank) {
   s.blocks.push_back({{0, 0, 0}, {a, 2 * a, depth}});
 }
 
+Eigen::Vector3d blockLattice(const WaterBlock& b, double spacing) {
+  return ((b.max - b.min) / spacing + Eigen::Vector3d::Constant(1e-6)).array().floor();
+}
+
 Scene buildScene(const SceneSpec& spec) {
   Scene s;
   s.spec = spec;
@@ -95,7 +99,7 @@ Scene buildScene(const SceneSpec& spec) {
     // Whole cells that fit in the box (never more, so no particle starts inside a wall next to
     // it), centred in it.
     const Eigen::Vector3d extent = b.max - b.min;
-    const Eigen::Vector3i n = (extent / ds + Eigen::Vector3d::Constant(1e-6)).array().floor().cast<int>();
+    const Eigen::Vector3i n = blockLattice(b, ds).cast<int>();  // checkFootprint bounded it
     const Eigen::Vector3d lo = b.min + 0.5 * (extent - ds * n.cast<double>());
     const double top = lo.y() + n.y() * ds;
     for (int k = 0; k < n.z(); ++k)

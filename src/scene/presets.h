@@ -140,6 +140,11 @@ Heightfield buildTerrain(const TerrainSpec& t);
 /// (or TerrainError for a heightmap) before the water is made.
 Scene buildScene(const SceneSpec& spec);
 
+/// The whole lattice cells of spacing Δs that fit a block, per axis: what buildScene fills and
+/// estimateFootprint counts (doubles: an absurd block's count must not overflow before the
+/// footprint refuses it).
+Eigen::Vector3d blockLattice(const WaterBlock& b, double spacing);
+
 /// What a scene asks of the machine, estimated before the water is made. Without the terrain,
 /// water filled above it (above_terrain, flood_from) is not counted and `unknown` says so; with
 /// it, such a block counts the columns between the terrain and its top.
