@@ -5,6 +5,7 @@
 
 #include "cli/commands.h"
 #include "scene/output.h"
+#include "scene/scene_json.h"
 #include "study/stress.h"
 
 namespace scour {
@@ -20,7 +21,20 @@ struct StressOptions {
   std::string trace;
   std::vector<std::string> sets;
   long paper = 0;
+  double time = 1.0;
 };
+
+// A name with a '/' or ending in .json is a scene file, run for `time` simulated seconds and
+// reported under its file name.
+StressScene stressSceneOrFile(const std::string& name, double time) {
+  if (name.find('/') == std::string::npos && !name.ends_with(".json")) return stressScene(name);
+  StressScene s;
+  s.spec = loadSceneFile(name);
+  s.name = std::filesystem::path(name).stem().string();
+  s.description = s.spec.description.empty() ? name : s.spec.description;
+  s.duration = time;
+  return s;
+}
 
 int stress(const StressOptions& o) {
   if (o.list) {
@@ -36,7 +50,7 @@ int stress(const StressOptions& o) {
       scenes = paperStressScenes(o.paper);
     } else {
       for (const std::string& n : o.scenes.empty() ? stressSceneNames() : o.scenes)
-        scenes.push_back(stressScene(n));
+        scenes.push_back(stressSceneOrFile(n, o.time));
     }
   } catch (const std::invalid_argument& e) {
     throw InputError(std::string("--scene: ") + e.what());
@@ -87,7 +101,10 @@ Command addStressCommand(CLI::App& app) {
   auto o = std::make_shared<StressOptions>();
   CLI::App* c = app.add_subcommand(
       "stress", "Hard scenes with every invariant checked every step; exits 3 if one fails");
-  c->add_option("--scene", o->scenes, "Run only this scene (repeatable; default: all)");
+  c->add_option("--scene", o->scenes,
+                "Run only this scene, or a scene file (.json) (repeatable; default: all)");
+  c->add_option("--time", o->time, "Simulated seconds for a scene file (default 1)")
+      ->check(kPositive);
   c->add_option("--set", o->sets, "Override a parameter in every scene: key=value (repeatable)");
   c->add_flag("--list", o->list, "List the scenes, one per line");
   c->add_option("--threads", o->threads, "OpenMP threads (default: all cores)")->check(kPositive);

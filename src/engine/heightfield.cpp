@@ -85,3 +85,64 @@ std::array<Eigen::Vector3d, 3> Heightfield::triangleCorners(int tri) const {
 }
 
 }  // namespace scour
+
+namespace scour {
+
+WallSurface::WallSurface(const Heightfield& terrain, double radius) {
+  const int rx = int(std::floor(radius / terrain.dx() + 1e-9));
+  const int rz = int(std::floor(radius / terrain.dz() + 1e-9));
+  if (rx < 1 && rz < 1) return;  // no vertex but the centre within the radius: the terrain itself
+  for (int b = -rz; b <= rz; ++b)
+    for (int a = -rx; a <= rx; ++a) {
+      const double u = rx ? double(a) / rx : 0.0, w = rz ? double(b) / rz : 0.0;
+      if (u * u + w * w <= 1.0 + 1e-9) disk_.push_back({a, b});
+    }
+  highest_ = smooth_ = terrain;
+  mark_.assign(terrain.heights().size(), 0);
+  for (int k = 0; k < terrain.nz(); ++k)
+    for (int i = 0; i < terrain.nx(); ++i) highest_.at(i, k) = filtered(terrain, i, k, true);
+  for (int k = 0; k < terrain.nz(); ++k)
+    for (int i = 0; i < terrain.nx(); ++i) smooth_.at(i, k) = filtered(highest_, i, k, false);
+}
+
+double WallSurface::filtered(const Heightfield& in, int i, int k, bool highest) const {
+  double m = highest ? -std::numeric_limits<double>::infinity() : 0.0;
+  for (const auto& o : disk_) {
+    const double v = in.at(std::clamp(i + o[0], 0, in.nx() - 1), std::clamp(k + o[1], 0, in.nz() - 1));
+    m = highest ? std::max(m, v) : m + v;
+  }
+  return highest ? m : m / double(disk_.size());
+}
+
+std::vector<int> WallSurface::spread(const Heightfield& t, const std::vector<int>& vertices) {
+  if (++epoch_ == 0) std::fill(mark_.begin(), mark_.end(), 0u), epoch_ = 1;
+  std::vector<int> out;
+  for (int v : vertices) {
+    const int i = v % t.nx(), k = v / t.nx();
+    for (const auto& o : disk_) {
+      const int ii = i + o[0], kk = k + o[1];
+      if (ii < 0 || kk < 0 || ii >= t.nx() || kk >= t.nz()) continue;
+      const int u = kk * t.nx() + ii;
+      if (mark_[size_t(u)] != epoch_) mark_[size_t(u)] = epoch_, out.push_back(u);
+    }
+  }
+  return out;
+}
+
+void WallSurface::follow(const Heightfield& terrain, const std::vector<int>& movedTriangles) {
+  if (disk_.empty() || movedTriangles.empty()) return;
+  const int cells = terrain.nx() - 1;
+  std::vector<int> corners;
+  for (int t : movedTriangles) {
+    const int ci = (t / 2) % cells, ck = (t / 2) / cells;
+    for (int b = 0; b < 2; ++b)
+      for (int a = 0; a < 2; ++a) corners.push_back((ck + b) * terrain.nx() + ci + a);
+  }
+  // A vertex's maximum reads the terrain within the radius, its average the maxima within it.
+  const std::vector<int> maxima = spread(terrain, corners);
+  for (int u : maxima) highest_.heights()[size_t(u)] = filtered(terrain, u % terrain.nx(), u / terrain.nx(), true);
+  for (int u : spread(terrain, maxima))
+    smooth_.heights()[size_t(u)] = filtered(highest_, u % terrain.nx(), u / terrain.nx(), false);
+}
+
+}  // namespace scour

@@ -7,6 +7,7 @@
 
 #include <Eigen/Core>
 #include <array>
+#include <cstdint>
 #include <vector>
 
 namespace scour {
@@ -67,6 +68,31 @@ class Heightfield {
   int nx_ = 0, nz_ = 0;
   double dx_ = 1, dz_ = 1, x0_ = 0, z0_ = 0;
   std::vector<double> h_;
+};
+
+/// The surface the walls see (docs/model.md, "the wall surface"): the terrain's highest point
+/// within a radius (Δs/2) of each vertex, averaged over the same disk. It is never below the
+/// terrain (every vertex within the radius of a vertex has that vertex in its own disk), and it
+/// has no feature narrower than the radius: fluid particles cannot resolve one, and a plane that
+/// turns with every cell of a terrain rougher than Δs pumped energy into the particles over it.
+/// A grid coarser than the radius has no vertex but the centre in any disk: the surface is the
+/// terrain itself, and nothing is copied.
+class WallSurface {
+ public:
+  WallSurface() = default;
+  WallSurface(const Heightfield& terrain, double radius);
+  /// Follows the terrain after the triangles `movedTriangles` changed (applyTerrainChange).
+  void follow(const Heightfield& terrain, const std::vector<int>& movedTriangles);
+  const Heightfield& of(const Heightfield& terrain) const { return disk_.empty() ? terrain : smooth_; }
+  bool filters() const { return !disk_.empty(); }
+
+ private:
+  std::vector<std::array<int, 2>> disk_;  // vertex offsets within the radius
+  Heightfield highest_, smooth_;
+  std::vector<uint32_t> mark_;
+  uint32_t epoch_ = 0;
+  double filtered(const Heightfield& in, int i, int k, bool highest) const;
+  std::vector<int> spread(const Heightfield& t, const std::vector<int>& vertices);
 };
 
 }  // namespace scour

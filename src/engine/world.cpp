@@ -102,6 +102,7 @@ World::World(WorldDesc d)
   require(hf_.dx() > 0 && hf_.dz() > 0, "terrain: cell size must be positive");
   for (double h : hf_.heights()) require(std::isfinite(h), "terrain: heights must be finite");
   hf0_ = hf_;
+  wall_ = WallSurface(hf_, 0.5 * p_.spacing);
   vertexArea_ = vertexAreas(hf_);
   terrainReference_ = hf_.minHeight();
   acc_.resize(hf_.triangleCount());
@@ -166,17 +167,18 @@ void World::timed(Pass pass, F&& f) {
 
 double World::chooseDt() const {
   if (p_.fixed_dt > 0) return p_.fixed_dt;
-  float v2 = 0, a2 = 0;
+  float v2 = 0, a2 = 0, rhoMax = 0;
   const size_t n = f_.size();
-#pragma omp parallel for schedule(static) reduction(max : v2, a2)
+#pragma omp parallel for schedule(static) reduction(max : v2, a2, rhoMax)
   for (size_t i = 0; i < n; ++i) {
     v2 = std::max(v2, f_.v[i].squaredNorm());
     a2 = std::max(a2, f_.a[i].squaredNorm());
+    rhoMax = std::max(rhoMax, f_.rho[i]);
   }
   const double h = k_.h;
   double dt = p_.max_dt;
   if (fx_.fluid_motion) {
-    dt = std::min(dt, p_.cfl * h / std::max(p_.sound_speed, std::sqrt(double(v2))));
+    dt = std::min(dt, p_.cfl * h / std::max(k_.soundSpeed(rhoMax), std::sqrt(double(v2))));
     if (a2 > 0) dt = std::min(dt, p_.force_cfl * std::sqrt(h / std::sqrt(double(a2))));
     if (densityRate_ > 0) dt = std::min(dt, p_.density_cfl / densityRate_);
     if (p_.viscosity > 0) dt = std::min(dt, 0.125 * h * h / p_.viscosity);
@@ -232,12 +234,12 @@ void World::computeAccelerations() {
   timed(Pass::kDensity, [&] {
     if (k_.continuity)
       // f_.v holds v(t + Δt/2) here
-      densityRate_ = integrateDensity(k_, nbrs_, hf_, dom_, f_.v, dt_, f_);
+      densityRate_ = integrateDensity(k_, nbrs_, wall_.of(hf_), dom_, f_.v, dt_, f_);
     else
-      computeDensity(k_, nbrs_, hf_, dom_, f_), densityRate_ = 0;  // no continuity rate to bound Δt
+      computeDensity(k_, nbrs_, wall_.of(hf_), dom_, f_), densityRate_ = 0;  // no continuity rate to bound Δt
   });
   timed(Pass::kForces, [&] { computeForces(k_, nbrs_, vhat_, f_); });
-  timed(Pass::kBoundaryForces, [&] { applyBoundaryForces(k_, hf_, dom_, vhat_, f_); });
+  timed(Pass::kBoundaryForces, [&] { applyBoundaryForces(k_, wall_.of(hf_), dom_, vhat_, f_); });
   if (fx_.no_slip) timed(Pass::kNoSlip, [&] { applyNoSlip(k_, bnbrs_, b_, vhat_, f_); });
 }
 
@@ -393,6 +395,7 @@ void World::sedimentWork() {
     timed(Pass::kTerrain, [&] {
       std::vector<int> moved = applyTerrainChange(hf_, vertexArea_, acc_);
       BoundarySampler::follow(hf_, moved, b_);
+      wall_.follow(hf_, moved);
     });
   }
 }
@@ -834,6 +837,7 @@ void World::loadState(std::istream& in) {
   f_ = std::move(f);
   vhat_ = std::move(vhat);
   hf_.heights() = std::move(heights);
+  wall_ = WallSurface(hf_, 0.5 * p_.spacing);
   b_ = std::move(b);
   sampler_.setActiveTiles(std::move(tiles));
   energyLedger_ = mechanicalEnergy();

@@ -245,6 +245,7 @@ class World {
   SphConstants k_;
   SedimentConstants sk_;
   Heightfield hf_, hf0_;
+  WallSurface wall_;  // what the walls see of hf_
   std::vector<double> vertexArea_;
   double terrainReference_ = 0;
   TerrainAccumulator acc_;

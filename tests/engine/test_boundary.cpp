@@ -96,5 +96,45 @@ TEST_CASE("no-slip friction slows water down the slope", "[boundary][physics]") 
   double free = meanSpeed(0.0), sticky = meanSpeed(2e-4);
   INFO("mean speed without friction " << free << " m/s, with μ_b = 2e-4: " << sticky << " m/s");
   CHECK(free > 0.3);
-  CHECK(sticky < 0.8 * free);
+  // Measured: 0.80 of the free speed (0.79 before the CFL step followed the compressed sound
+  // speed, which shortens it by about 3 %); without friction at work the ratio would be 1.
+  CHECK(sticky < 0.85 * free);
+}
+
+TEST_CASE("the wall surface is the terrain's envelope, never below it, and follows it", "[boundary]") {
+  // Needles: every vertex a random height within ±4 cells, on a grid of 1 cm.
+  Heightfield t(41, 31, 0.01, 0.01);
+  uint32_t seed = 7;
+  for (double& y : t.heights()) {
+    seed = seed * 1664525u + 1013904223u;
+    y = 0.04 * double(seed >> 8) / double(1 << 24);
+  }
+  const WallSurface w(t, 0.01);  // a radius of one cell: the disk is the vertex and its 4 nearest
+  REQUIRE(w.filters());
+  double roughT = 0, roughW = 0;
+  for (int k = 0; k < t.nz(); ++k)
+    for (int i = 0; i < t.nx(); ++i) {
+      REQUIRE(w.of(t).at(i, k) >= t.at(i, k));
+      if (i == 0) continue;
+      roughT += std::abs(t.at(i, k) - t.at(i - 1, k));
+      roughW += std::abs(w.of(t).at(i, k) - w.of(t).at(i - 1, k));
+    }
+  CHECK(roughW < 0.5 * roughT);  // the needles are gone
+  // A vertex in the middle: the mean of the maxima over its 5-point disk, by hand.
+  auto mx = [&](int i, int k) {
+    return std::max({t.at(i, k), t.at(i - 1, k), t.at(i + 1, k), t.at(i, k - 1), t.at(i, k + 1)});
+  };
+  CHECK(w.of(t).at(10, 10) == Approx((mx(10, 10) + mx(9, 10) + mx(11, 10) + mx(10, 9) + mx(10, 11)) / 5));
+
+  // Erosion moves one cell's corners: following it gives what a rebuild gives, to the bit.
+  Heightfield moved = t;
+  moved.at(20, 15) += 0.05, moved.at(21, 16) -= 0.03;
+  WallSurface followed = w;
+  followed.follow(moved, {2 * (15 * 40 + 20), 2 * (15 * 40 + 20) + 1});
+  CHECK(followed.of(moved).heights() == WallSurface(moved, 0.01).of(moved).heights());
+
+  // A grid coarser than the radius: the terrain itself, not a copy.
+  const WallSurface coarse(t, 0.009);
+  CHECK_FALSE(coarse.filters());
+  CHECK(&coarse.of(t) == &t);
 }

@@ -196,7 +196,9 @@ TEST_CASE("a kd-tree run follows the grid run to rounding", "[neighbors][kdtree]
     // At construction the particles are the same to the bit: so are the neighbor sets.
     REQUIRE(fromLists(kd.neighbors()) == fromLists(grid.neighbors()));
     for (int k = 0; k < 50; ++k) grid.step(), kd.step();
-    CHECK(kd.time() == grid.time());
+    // Δt follows the densest particle's sound speed c_s (ρ/ρ0)³, and that (float) density differs
+    // at rounding: 3·10⁻⁷ relative at most in a step.
+    CHECK(kd.time() == Approx(grid.time()).epsilon(3e-7));
     const double diff = maxDifference(grid, kd);
     CHECK(diff < 1e-3);
     CHECK(std::abs(kd.soilBudget().total() - grid.soilBudget().total()) <=
