@@ -18,6 +18,7 @@
 #include <optional>
 #include <sstream>
 
+#include "app/edit_history.h"
 #include "app/worker.h"
 #include "render/context.h"
 #include "render/renderer.h"
@@ -162,32 +163,18 @@ int runApp(const SceneSpec& spec, const AppOptions& o) {
   long lastStep = -1;
   std::vector<std::string> log;
   std::string lastError, lastNotice;
-  // Undo/redo of parameter and source edits: each edit keeps the commands that redo and undo it.
-  struct Edit {
-    std::vector<SimCommand> redo, undo;
-    std::string what, key;  // key: a parameter edit that a slider drag may extend
+  // Undo/redo of parameter and source edits (edit_history.h).
+  EditHistory history;
+  auto post = [&](const std::vector<SimCommand>& commands) {
+    for (const SimCommand& c : commands) worker.post(c);
   };
-  std::vector<Edit> undoStack, redoStack;
-  auto perform = [&](Edit e, bool extend) {
-    if (extend && !undoStack.empty() && !e.key.empty() && undoStack.back().key == e.key) {
-      undoStack.back().redo = e.redo;  // one drag, one edit: keep the value from before it
-    } else {
-      undoStack.push_back(e);
-    }
-    redoStack.clear();
-    for (const SimCommand& c : e.redo) worker.post(c);
+  auto perform = [&](Edit e, bool extend) { post(history.perform(std::move(e), extend)); };
+  auto undo = [&] {
+    if (std::optional<Edit> e = history.undo()) post(e->undo), log.push_back("undo: " + e->what);
   };
-  // Undo takes the newest edit off the undo stack and posts its undo commands; redo the reverse.
-  auto travel = [&](std::vector<Edit>& from, std::vector<Edit>& to, bool back) {
-    if (from.empty()) return;
-    Edit e = std::move(from.back());
-    from.pop_back();
-    for (const SimCommand& c : back ? e.undo : e.redo) worker.post(c);
-    log.push_back((back ? "undo: " : "redo: ") + e.what);
-    to.push_back(std::move(e));
+  auto redo = [&] {
+    if (std::optional<Edit> e = history.redo()) post(e->redo), log.push_back("redo: " + e->what);
   };
-  auto undo = [&] { travel(undoStack, redoStack, true); };
-  auto redo = [&] { travel(redoStack, undoStack, false); };
   // A restored snapshot brings back its own sources and sinks: edits made before it would undo
   // onto the wrong ones, so the history starts afresh.
   auto restoreSnapshot = [&](int id) {
@@ -195,8 +182,7 @@ int runApp(const SceneSpec& spec, const AppOptions& o) {
     const auto& kept = worker.latest().snapshots;
     if (std::none_of(kept.begin(), kept.end(), [&](const SnapshotInfo& k) { return k.id == id; }))
       return;
-    undoStack.clear();
-    redoStack.clear();
+    history.clear();
     log.push_back("restoring snapshot " + std::to_string(id) + " (undo history cleared)");
   };
   // A source being dragged across the terrain: every move is an UpdateSource, and the moves of
@@ -414,10 +400,9 @@ int runApp(const SceneSpec& spec, const AppOptions& o) {
     } else if (drag.index >= 0) {
       // A drag owns the mouse until the button is up, over a panel or not; Escape cancels it.
       if (ImGui::IsKeyPressed(ImGuiKey_Escape)) {
-        if (drag.moved && !undoStack.empty() &&
-            undoStack.back().key == "move source " + std::to_string(drag.index)) {
-          undo();
-          redoStack.pop_back();  // a cancelled drag is not there to redo
+        if (drag.moved) {  // a cancelled drag is not there to redo
+          if (std::optional<Edit> e = history.cancel("move source " + std::to_string(drag.index)))
+            post(e->undo), log.push_back("undo: " + e->what);
         }
         drag = SourceDrag{};
         cancelled = true;
@@ -518,10 +503,12 @@ int runApp(const SceneSpec& spec, const AppOptions& o) {
     if (ImGui::Button("Reset")) worker.post(cmd::Reset{});
     ImGui::SameLine();
     if (ImGui::Button("Undo")) undo();
-    if (ImGui::IsItemHovered() && !undoStack.empty()) ImGui::SetTooltip("%s", undoStack.back().what.c_str());
+    if (ImGui::IsItemHovered() && history.nextUndo())
+      ImGui::SetTooltip("%s", history.nextUndo()->what.c_str());
     ImGui::SameLine();
     if (ImGui::Button("Redo")) redo();
-    if (ImGui::IsItemHovered() && !redoStack.empty()) ImGui::SetTooltip("%s", redoStack.back().what.c_str());
+    if (ImGui::IsItemHovered() && history.nextRedo())
+      ImGui::SetTooltip("%s", history.nextRedo()->what.c_str());
     if (!io.WantCaptureKeyboard && io.KeyCtrl) {
       if (ImGui::IsKeyPressed(ImGuiKey_Z)) undo();
       if (ImGui::IsKeyPressed(ImGuiKey_Y)) redo();

@@ -108,7 +108,8 @@ WallSurface::WallSurface(const Heightfield& terrain, double radius) {
 double WallSurface::filtered(const Heightfield& in, int i, int k, bool highest) const {
   double m = highest ? -std::numeric_limits<double>::infinity() : 0.0;
   for (const auto& o : disk_) {
-    const double v = in.at(std::clamp(i + o[0], 0, in.nx() - 1), std::clamp(k + o[1], 0, in.nz() - 1));
+    const double v =
+        in.at(std::clamp(i + o[0], 0, in.nx() - 1), std::clamp(k + o[1], 0, in.nz() - 1));
     m = highest ? std::max(m, v) : m + v;
   }
   return highest ? m : m / double(disk_.size());
@@ -140,7 +141,8 @@ void WallSurface::follow(const Heightfield& terrain, const std::vector<int>& mov
   }
   // A vertex's maximum reads the terrain within the radius, its average the maxima within it.
   const std::vector<int> maxima = spread(terrain, corners);
-  for (int u : maxima) highest_.heights()[size_t(u)] = filtered(terrain, u % terrain.nx(), u / terrain.nx(), true);
+  for (int u : maxima)
+    highest_.heights()[size_t(u)] = filtered(terrain, u % terrain.nx(), u / terrain.nx(), true);
   for (int u : spread(terrain, maxima))
     smooth_.heights()[size_t(u)] = filtered(highest_, u % terrain.nx(), u / terrain.nx(), false);
 }

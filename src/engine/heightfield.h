@@ -83,7 +83,9 @@ class WallSurface {
   WallSurface(const Heightfield& terrain, double radius);
   /// Follows the terrain after the triangles `movedTriangles` changed (applyTerrainChange).
   void follow(const Heightfield& terrain, const std::vector<int>& movedTriangles);
-  const Heightfield& of(const Heightfield& terrain) const { return disk_.empty() ? terrain : smooth_; }
+  const Heightfield& of(const Heightfield& terrain) const {
+    return disk_.empty() ? terrain : smooth_;
+  }
   bool filters() const { return !disk_.empty(); }
 
  private:

@@ -4,7 +4,6 @@
 // failure prints the new line of each preset; paste them in that change's own commit and say
 // why. SCOUR_GOLDEN_PRINT=1 prints every line.
 #include <catch2/catch.hpp>
-
 #include <cstdint>
 #include <cstdlib>
 #include <iostream>
