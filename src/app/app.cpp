@@ -19,6 +19,7 @@
 #include <sstream>
 
 #include "app/edit_history.h"
+#include "app/viewport.h"
 #include "app/worker.h"
 #include "render/context.h"
 #include "render/renderer.h"
@@ -28,95 +29,12 @@ namespace scour {
 
 namespace {
 
-// Orbit camera: yaw and pitch around a target, at a distance.
-struct Orbit {
-  Eigen::Vector3f target = Eigen::Vector3f::Zero();
-  float yaw = -0.6f, pitch = 0.7f, distance = 3.0f;
-  Camera camera() const {
-    Camera c;
-    c.target = target;
-    c.eye = target + distance * Eigen::Vector3f(std::cos(pitch) * std::sin(yaw), std::sin(pitch),
-                                                std::cos(pitch) * std::cos(yaw));
-    return c;
-  }
-};
-
-Orbit orbitFor(const Frame& f) {
-  const Camera c = overviewCamera(f);
-  Orbit o;
-  o.target = c.target;
-  const Eigen::Vector3f d = c.eye - c.target;
-  o.distance = d.norm();
-  o.pitch = std::asin(d.y() / o.distance);
-  o.yaw = std::atan2(d.x(), d.z());
-  return o;
-}
-
-// The frame's terrain height at (x, z), bilinear between vertices; false off the grid.
-bool terrainHeight(const Frame& f, double px, double pz, float& hgt) {
-  const double u = (px - f.x0) / f.dx, v = (pz - f.z0) / f.dz;
-  if (!(u >= 0 && v >= 0 && u <= f.nx - 1 && v <= f.nz - 1) || f.nx < 2 || f.nz < 2) return false;
-  const int i = std::min(int(u), f.nx - 2), k = std::min(int(v), f.nz - 2);
-  const float fu = float(u - i), fv = float(v - k);
-  auto at = [&](int di, int dk) {
-    return f.height[size_t(k + dk) * size_t(f.nx) + size_t(i + di)];
-  };
-  hgt =
-      (1 - fv) * ((1 - fu) * at(0, 0) + fu * at(1, 0)) + fv * ((1 - fu) * at(0, 1) + fu * at(1, 1));
-  return true;
-}
-
-// The point of the terrain under the mouse: march along the ray through the pixel.
-bool pickTerrain(const Frame& f, const Camera& c, float aspect, double mx, double my, int w, int h,
-                 Eigen::Vector3f& hit) {
-  const Eigen::Matrix4f inv = (c.projection(aspect, 0.01f, 1000.0f) * c.view()).inverse();
-  const float x = float(2 * mx / w - 1), y = float(1 - 2 * my / h);
-  Eigen::Vector4f a = inv * Eigen::Vector4f(x, y, -1, 1), b = inv * Eigen::Vector4f(x, y, 1, 1);
-  const Eigen::Vector3f p0 = a.head<3>() / a.w(), p1 = b.head<3>() / b.w();
-  const Eigen::Vector3f dir = (p1 - p0).normalized();
-  auto height = [&](float px, float pz, float& hgt) { return terrainHeight(f, px, pz, hgt); };
-  const float step = float(std::min(f.dx, f.dz)) * 0.5f;
-  Eigen::Vector3f p = p0;
-  for (int s = 0; s < 200000; ++s, p += step * dir) {
-    float hgt = 0;
-    if (height(p.x(), p.z(), hgt) && p.y() <= hgt) {
-      hit = {p.x(), hgt, p.z()};
-      return true;
-    }
-    if ((p - p0).norm() > 1000) break;
-  }
-  return false;
-}
-
-// The window pixel (x right, y down) a world point projects to: pickTerrain's inverse. False
-// behind the camera.
+// toWindow in ImGui's pixel type, for drawing.
 bool toWindow(const Camera& c, float aspect, const Eigen::Vector3f& p, int w, int h, ImVec2& out) {
-  const Eigen::Vector4f q =
-      c.projection(aspect, 0.01f, 1000.0f) * c.view() * Eigen::Vector4f(p.x(), p.y(), p.z(), 1);
-  if (!(q.w() > 1e-6f)) return false;
-  out = {float((q.x() / q.w() + 1) * 0.5 * w), float((1 - q.y() / q.w()) * 0.5 * h)};
-  return std::isfinite(out.x) && std::isfinite(out.y);
-}
-
-// Pixels from p to the segment ab.
-float segmentDistance(ImVec2 p, ImVec2 a, ImVec2 b) {
-  const float ux = b.x - a.x, uy = b.y - a.y, len2 = ux * ux + uy * uy;
-  const float t =
-      len2 > 0 ? std::clamp(((p.x - a.x) * ux + (p.y - a.y) * uy) / len2, 0.0f, 1.0f) : 0.0f;
-  return std::hypot(p.x - a.x - t * ux, p.y - a.y - t * uy);
-}
-
-// A source's centre moved so its disk lies over the terrain (a disk reaching past a closed wall
-// would emit particles outside it), at `lift` above the terrain there. Unchanged when the terrain
-// is narrower than the disk.
-Eigen::Vector3d overTerrain(const Frame& f, Eigen::Vector3d c, double radius, double lift) {
-  const double x1 = f.x0 + (f.nx - 1) * f.dx, z1 = f.z0 + (f.nz - 1) * f.dz;
-  if (x1 - f.x0 > 2 * radius) c.x() = std::clamp(c.x(), f.x0 + radius, x1 - radius);
-  if (z1 - f.z0 > 2 * radius) c.z() = std::clamp(c.z(), f.z0 + radius, z1 - radius);
-  float g = float(c.y());
-  terrainHeight(f, c.x(), c.z(), g);
-  c.y() = g + lift;
-  return c;
+  Eigen::Vector2f q;
+  if (!toWindow(c, aspect, p, w, h, q)) return false;
+  out = {q.x(), q.y()};
+  return true;
 }
 
 std::string number(double v) {
@@ -261,7 +179,8 @@ int runApp(const SceneSpec& spec, const AppOptions& o) {
       for (size_t i = 0; i < snap.sources.size(); ++i) {
         ImVec2 foot, top;
         if (!sourceStem(snap.sources[i].center, foot, top)) continue;
-        const float d = segmentDistance({float(mx), float(my)}, foot, top);
+        const float d = segmentDistance(Eigen::Vector2f(float(mx), float(my)), {foot.x, foot.y},
+                                        {top.x, top.y});
         if (d <= bestDistance) best = int(i), bestDistance = d;
       }
       return best;

@@ -1,0 +1,92 @@
+#include "app/viewport.h"
+
+#include <Eigen/LU>
+#include <algorithm>
+#include <cmath>
+
+namespace scour {
+
+namespace {
+constexpr float kNear = 0.01f, kFar = 1000.0f;  // the renderer's clip planes
+}
+
+Camera Orbit::camera() const {
+  Camera c;
+  c.target = target;
+  c.eye = target + distance * Eigen::Vector3f(std::cos(pitch) * std::sin(yaw), std::sin(pitch),
+                                              std::cos(pitch) * std::cos(yaw));
+  return c;
+}
+
+Orbit orbitFor(const Frame& f) {
+  const Camera c = overviewCamera(f);
+  Orbit o;
+  o.target = c.target;
+  const Eigen::Vector3f d = c.eye - c.target;
+  o.distance = d.norm();
+  o.pitch = std::asin(d.y() / o.distance);
+  o.yaw = std::atan2(d.x(), d.z());
+  return o;
+}
+
+bool terrainHeight(const Frame& f, double x, double z, float& height) {
+  const double u = (x - f.x0) / f.dx, v = (z - f.z0) / f.dz;
+  if (!(u >= 0 && v >= 0 && u <= f.nx - 1 && v <= f.nz - 1) || f.nx < 2 || f.nz < 2) return false;
+  const int i = std::min(int(u), f.nx - 2), k = std::min(int(v), f.nz - 2);
+  const float fu = float(u - i), fv = float(v - k);
+  auto at = [&](int di, int dk) {
+    return f.height[size_t(k + dk) * size_t(f.nx) + size_t(i + di)];
+  };
+  height =
+      (1 - fv) * ((1 - fu) * at(0, 0) + fu * at(1, 0)) + fv * ((1 - fu) * at(0, 1) + fu * at(1, 1));
+  return true;
+}
+
+bool pickTerrain(const Frame& f, const Camera& c, float aspect, double mx, double my, int w, int h,
+                 Eigen::Vector3f& hit) {
+  const Eigen::Matrix4f worldFromClip = (c.projection(aspect, kNear, kFar) * c.view()).inverse();
+  const float x = float(2 * mx / w - 1), y = float(1 - 2 * my / h);
+  const Eigen::Vector4f a = worldFromClip * Eigen::Vector4f(x, y, -1, 1);
+  const Eigen::Vector4f b = worldFromClip * Eigen::Vector4f(x, y, 1, 1);
+  const Eigen::Vector3f p0 = a.head<3>() / a.w(), p1 = b.head<3>() / b.w();
+  const Eigen::Vector3f dir = (p1 - p0).normalized();
+  const float step = float(std::min(f.dx, f.dz)) * 0.5f;
+  Eigen::Vector3f p = p0;
+  for (int s = 0; s < 200000; ++s, p += step * dir) {
+    float height = 0;
+    if (terrainHeight(f, p.x(), p.z(), height) && p.y() <= height) {
+      hit = {p.x(), height, p.z()};
+      return true;
+    }
+    if ((p - p0).norm() > kFar) break;
+  }
+  return false;
+}
+
+bool toWindow(const Camera& c, float aspect, const Eigen::Vector3f& p, int w, int h,
+              Eigen::Vector2f& pixel) {
+  const Eigen::Matrix4f clipFromWorld = c.projection(aspect, kNear, kFar) * c.view();
+  const Eigen::Vector4f q = clipFromWorld * Eigen::Vector4f(p.x(), p.y(), p.z(), 1);
+  if (!(q.w() > 1e-6f)) return false;
+  pixel = {float((q.x() / q.w() + 1) * 0.5 * w), float((1 - q.y() / q.w()) * 0.5 * h)};
+  return std::isfinite(pixel.x()) && std::isfinite(pixel.y());
+}
+
+float segmentDistance(const Eigen::Vector2f& p, const Eigen::Vector2f& a, const Eigen::Vector2f& b) {
+  const Eigen::Vector2f u = b - a;
+  const float len2 = u.squaredNorm();
+  const float t = len2 > 0 ? std::clamp((p - a).dot(u) / len2, 0.0f, 1.0f) : 0.0f;
+  return (p - a - t * u).norm();
+}
+
+Eigen::Vector3d overTerrain(const Frame& f, Eigen::Vector3d centre, double radius, double lift) {
+  const double x1 = f.x0 + (f.nx - 1) * f.dx, z1 = f.z0 + (f.nz - 1) * f.dz;
+  if (x1 - f.x0 > 2 * radius) centre.x() = std::clamp(centre.x(), f.x0 + radius, x1 - radius);
+  if (z1 - f.z0 > 2 * radius) centre.z() = std::clamp(centre.z(), f.z0 + radius, z1 - radius);
+  float g = float(centre.y());
+  terrainHeight(f, centre.x(), centre.z(), g);
+  centre.y() = g + lift;
+  return centre;
+}
+
+}  // namespace scour
