@@ -7,7 +7,7 @@
 // each cell in ascending particle order, so the lists are the same at any thread count. The lists
 // are stored in one chunk per thread (no copy); a particle's list is a pointer and a count.
 //
-// kd-tree (SimParams::neighbor_search = 1, the paper's choice): a nanoflann tree over the fluid
+// kd-tree (engine.neighbor_search = kd_tree, the paper's choice): a nanoflann tree over the fluid
 // (or the boundary) particles, rebuilt every step. Each radius query is widened slightly and then
 // filtered with the grid's own test, |x_i − y_j|² < h² in float, so both searches find the same
 // neighbor sets; a kd-tree list is sorted by ascending index (deterministic at any thread count,

@@ -1,12 +1,14 @@
 #include "engine/params.h"
 
-#include "engine/kernels.h"
-
 #include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <cstdlib>
 #include <string>
+#include <type_traits>
+#include <utility>
+
+#include "engine/kernels.h"
 
 namespace scour {
 namespace {
@@ -17,18 +19,28 @@ const char* const kNeighborChoices[] = {"grid", "kd_tree", nullptr};
 const char* const kAdvectionChoices[] = {"donor_acceptor", "naive_gradient", nullptr};
 const char* const kDiffusionFormChoices[] = {"consistent", "printed", nullptr};
 
-ParamInfo real(const char* key, const char* label, const char* symbol, const char* unit,
-               double lo, double hi, const char* help, double SimParams::*m) {
+ParamInfo real(const char* key, const char* label, const char* symbol, const char* unit, double lo,
+               double hi, const char* help, double SimParams::*m) {
   ParamInfo i{key, label, symbol, unit, lo, hi, help};
   i.dmember = m;
   return i;
 }
 ParamInfo integer(const char* key, const char* label, const char* symbol, const char* unit,
-                  double lo, double hi, const char* help, int SimParams::*m,
-                  const char* const* choices = nullptr) {
+                  double lo, double hi, const char* help, int SimParams::*m) {
   ParamInfo i{key, label, symbol, unit, lo, hi, help};
   i.imember = m;
+  return i;
+}
+// An enum field M, named by `choices` in enumerator order.
+template <auto M>
+ParamInfo choice(const char* key, const char* label, const char* help, const char* const* choices) {
+  using E = std::remove_reference_t<decltype(std::declval<SimParams&>().*M)>;
+  int count = 0;
+  while (choices[count]) ++count;
+  ParamInfo i{key, label, "", "-", 0.0, double(count - 1), help};
   i.choices = choices;
+  i.getChoice = [](const SimParams& p) { return int(p.*M); };
+  i.setChoice = [](SimParams& p, int v) { p.*M = E(v); };
   return i;
 }
 
@@ -45,12 +57,13 @@ std::vector<ParamInfo> makeTable() {
       real("fluid.sound_speed", "Speed of sound", "c_s", "m/s", 0.1, 1e4,
            "Numerical speed of sound of the weakly compressible fluid; ≥ 10·|v|max.",
            &P::sound_speed),
-      integer("fluid.eos", "Equation of state", "", "-", 0, 1,
-              "tait: p = B((ρ/ρ0)^7 − 1); ideal_gas: Müller's p = c_s²(ρ − ρ0).", &P::eos,
-              kEosChoices),
-      integer("fluid.density", "Density method", "", "-", 0, 1,
-              "continuity: dρ/dt from the velocity divergence (+ δ-SPH); summation: ρ = Σ m W.",
-              &P::density, kDensityChoices),
+      choice<&P::eos>("fluid.eos", "Equation of state",
+                      "tait: p = B((ρ/ρ0)^7 − 1); ideal_gas: Müller's p = c_s²(ρ − ρ0).",
+                      kEosChoices),
+      choice<&P::density>(
+          "fluid.density", "Density method",
+          "continuity: dρ/dt from the velocity divergence (+ δ-SPH); summation: ρ = Σ m W.",
+          kDensityChoices),
       real("fluid.density_diffusion", "Density diffusion", "δ", "-", 0.0, 1.0,
            "δ-SPH diffusion of the continuity density (Molteni & Colagrossi 2009).",
            &P::density_diffusion),
@@ -106,20 +119,23 @@ std::vector<ParamInfo> makeTable() {
       real("sediment.settling_viscosity", "Settling viscosity", "μ", "Pa·s", 1e-6, 1e3,
            "μ of eq. (17); the default gives v_s ≈ 0.1 m/s for 1 mm grains.",
            &P::settling_viscosity),
-      integer("sediment.advection", "Settling advection", "", "-", 0, 1,
-              "donor_acceptor: eq. (16) as pairwise volume fluxes (conservative); naive_gradient: "
-              "−v_s·∇C per particle with the symmetric SPH gradient (leaks; study baseline).",
-              &P::advection, kAdvectionChoices),
-      integer("sediment.diffusion_form", "Diffusion form", "", "-", 0, 1,
-              "consistent: Σ V 2D (C_i − C_j) F/|r| (model.md); printed: eq. (19) as printed, "
-              "Σ m/(ρ_i ρ_j) D (C_i − C_j) F.",
-              &P::diffusion_form, kDiffusionFormChoices),
+      choice<&P::advection>(
+          "sediment.advection", "Settling advection",
+          "donor_acceptor: eq. (16) as pairwise volume fluxes (conservative); naive_gradient: "
+          "−v_s·∇C per particle with the symmetric SPH gradient (leaks; study baseline).",
+          kAdvectionChoices),
+      choice<&P::diffusion_form>(
+          "sediment.diffusion_form", "Diffusion form",
+          "consistent: Σ V 2D (C_i − C_j) F/|r| (model.md); printed: eq. (19) as printed, "
+          "Σ m/(ρ_i ρ_j) D (C_i − C_j) F.",
+          kDiffusionFormChoices),
       integer("engine.reorder_every", "Reorder interval", "", "steps", 1, 1e6,
               "Steps between Z-order reorders of the particle arrays.", &P::reorder_every),
-      integer("engine.neighbor_search", "Neighbor search", "", "-", 0, 1,
-              "grid: uniform cells of edge h; kd_tree: nanoflann kd-tree rebuilt every step (the "
-              "paper's). Same neighbor sets.",
-              &P::neighbor_search, kNeighborChoices),
+      choice<&P::neighbor_search>(
+          "engine.neighbor_search", "Neighbor search",
+          "grid: uniform cells of edge h; kd_tree: nanoflann kd-tree rebuilt every step (the "
+          "paper's). Same neighbor sets.",
+          kNeighborChoices),
       real("engine.max_penetration_over_ds", "Penetration limit", "", "Δs", 0.0, 100.0,
            "A particle deeper than this below the terrain stops the run.",
            &P::max_penetration_over_ds),
@@ -164,7 +180,8 @@ std::string nearestParamKey(std::string_view key) {
   std::string best;
   size_t bestD = SIZE_MAX;
   for (const auto& i : paramTable()) {
-    // Compare against the full key and against its last component, so "k_eps" finds "erosion.k_eps".
+    // Compare against the full key and against its last component, so "k_eps" finds
+    // "erosion.k_eps".
     std::string_view full = i.key;
     std::string_view tail = full.substr(full.find('.') + 1);
     size_t d = std::min(editDistance(key, full), editDistance(key, tail));
@@ -184,9 +201,12 @@ double SimParams::particleMass() const {
   return rest_density / sum;
 }
 
-double SimParams::particleVolume() const { return particleMass() / rest_density; }
+double SimParams::particleVolume() const {
+  return particleMass() / rest_density;
+}
 
 double getParam(const SimParams& p, const ParamInfo& info) {
+  if (info.getChoice) return double(info.getChoice(p));
   return info.dmember ? p.*info.dmember : double(p.*info.imember);
 }
 
@@ -204,7 +224,8 @@ std::string setParam(SimParams& p, std::string_view key, std::string_view value)
       if (text == info->choices[k]) v = k, parsed = true;
     if (!parsed) {
       std::string names;
-      for (int k = 0; info->choices[k]; ++k) names += (k ? ", " : "") + std::string(info->choices[k]);
+      for (int k = 0; info->choices[k]; ++k)
+        names += (k ? ", " : "") + std::string(info->choices[k]);
       return "parameter '" + std::string(key) + "': expected one of " + names + ", found '" + text +
              "'";
     }
@@ -212,7 +233,8 @@ std::string setParam(SimParams& p, std::string_view key, std::string_view value)
     char* end = nullptr;
     v = std::strtod(text.c_str(), &end);
     parsed = !text.empty() && end == text.c_str() + text.size();
-    if (!parsed) return "parameter '" + std::string(key) + "': expected a number, found '" + text + "'";
+    if (!parsed)
+      return "parameter '" + std::string(key) + "': expected a number, found '" + text + "'";
   }
   if (!std::isfinite(v)) return "parameter '" + std::string(key) + "': value must be finite";
   if (v < info->min || v > info->max) {
@@ -223,7 +245,10 @@ std::string setParam(SimParams& p, std::string_view key, std::string_view value)
     p.*info->dmember = v;
   } else {
     if (v != std::floor(v)) return "parameter '" + std::string(key) + "': expected an integer";
-    p.*info->imember = int(v);
+    if (info->setChoice)
+      info->setChoice(p, int(v));
+    else
+      p.*info->imember = int(v);
   }
   return {};
 }

@@ -10,7 +10,13 @@
 
 namespace scour {
 
-enum class EquationOfState { kTait, kIdealGas };
+// The choice parameters: stored as these enums, read and written by the names in the parameter
+// table (in the order of the enumerators).
+enum class EquationOfState { kTait, kIdealGas };                  // fluid.eos: tait, ideal_gas
+enum class DensityMethod { kContinuity, kSummation };             // fluid.density
+enum class NeighborSearch { kGrid, kKdTree };                     // engine.neighbor_search
+enum class SettlingAdvection { kDonorAcceptor, kNaiveGradient };  // sediment.advection
+enum class DiffusionForm { kConsistent, kPrinted };               // sediment.diffusion_form
 
 struct SimParams {
   // --- fluid (paper §3) ---
@@ -22,10 +28,10 @@ struct SimParams {
   double rest_density = 1000.0;
   /// c_s, numerical speed of sound; should be ≥ 10 |v|max [m/s].
   double sound_speed = 20.0;
-  /// Equation of state: 0 = Tait (default), 1 = Müller's ideal gas p = k(ρ − ρ0), k = c_s².
-  int eos = 0;
-  /// Density: 0 = continuity equation with δ-SPH diffusion (default), 1 = kernel summation.
-  int density = 0;
+  /// Equation of state: Tait (default), or Müller's ideal gas p = k(ρ − ρ0), k = c_s².
+  EquationOfState eos = EquationOfState::kTait;
+  /// Density: the continuity equation with δ-SPH diffusion (default), or the kernel summation.
+  DensityMethod density = DensityMethod::kContinuity;
   /// δ, δ-SPH density diffusion coefficient (continuity density only) [-].
   double density_diffusion = 0.1;
   /// ν, artificial kinematic viscosity for the viscosity-kernel Laplacian term [m²/s].
@@ -77,13 +83,13 @@ struct SimParams {
   double c_max = 0.6;
   /// e, Richardson–Zaki exponent of f(C) = 1 − (C/C_max)^e [-].
   double rz_exponent = 4.65;
-  /// Settling advection: 0 = donor–acceptor volume flux (eq. 16 doubled, model.md; default),
-  /// 1 = naive −v_s·∇C with the symmetric-difference SPH gradient, per particle as a rate of C
+  /// Settling advection: the donor–acceptor volume flux (eq. 16 doubled, model.md; default), or
+  /// the naive −v_s·∇C with the symmetric-difference SPH gradient, per particle as a rate of C
   /// (not conservative; kept as the accuracy study's baseline).
-  int advection = 0;
-  /// Diffusion: 0 = model.md's consistent form of eq. (19) (default), 1 = eq. (19) as printed,
+  SettlingAdvection advection = SettlingAdvection::kDonorAcceptor;
+  /// Diffusion: model.md's consistent form of eq. (19) (default), or eq. (19) as printed,
   /// Σ m/(ρ_i ρ_j) D (C_i − C_j) F (not dimensionally consistent; for the accuracy study).
-  int diffusion_form = 0;
+  DiffusionForm diffusion_form = DiffusionForm::kConsistent;
   /// μ in eq. (17), "settling viscosity": Stokes' law with water's viscosity gives metres per
   /// second for 1 mm grains, out of its range; the default gives v_s ≈ 0.1 m/s [Pa·s].
   double settling_viscosity = 0.036;
@@ -91,9 +97,9 @@ struct SimParams {
   // --- bookkeeping ---
   /// Steps between reorders of the particle arrays along the Z-order curve [-].
   int reorder_every = 16;
-  /// Neighbor search: 0 = uniform grid (default), 1 = kd-tree rebuilt every step (nanoflann; the
+  /// Neighbor search: a uniform grid (default), or a kd-tree rebuilt every step (nanoflann; the
   /// paper's choice). Both find the same neighbor sets; the kd-tree lists are in ascending index.
-  int neighbor_search = 0;
+  NeighborSearch neighbor_search = NeighborSearch::kGrid;
   /// A particle deeper than this below the terrain stops the run [Δs].
   double max_penetration_over_ds = 0.5;
 
@@ -109,23 +115,23 @@ struct SimParams {
     return 2.0 / 9.0 * grain_radius * grain_radius * (sediment_density - rest_density) /
            settling_viscosity * gravity;
   }
-  EquationOfState equationOfState() const {
-    return eos == 1 ? EquationOfState::kIdealGas : EquationOfState::kTait;
-  }
 };
 
 /// One row of the parameter table.
 struct ParamInfo {
-  const char* key;    ///< scene/CLI key, "group.name"
-  const char* label;  ///< human label for the GUI
-  const char* symbol; ///< the paper's symbol, or ""
+  const char* key;     ///< scene/CLI key, "group.name"
+  const char* label;   ///< human label for the GUI
+  const char* symbol;  ///< the paper's symbol, or ""
   const char* unit;
-  double min, max;    ///< valid closed range
+  double min, max;  ///< valid closed range
   const char* help;
   double SimParams::*dmember = nullptr;
   int SimParams::*imember = nullptr;
-  /// For enumerations stored in an int: the names of the values 0, 1, …; nullptr-terminated.
+  /// A choice (an enum field): the names of its values in enumerator order, nullptr-terminated,
+  /// and the field read and written as the index into them.
   const char* const* choices = nullptr;
+  int (*getChoice)(const SimParams&) = nullptr;
+  void (*setChoice)(SimParams&, int) = nullptr;
 };
 
 const std::vector<ParamInfo>& paramTable();

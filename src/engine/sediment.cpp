@@ -111,8 +111,8 @@ void transferSediment(const SedimentConstants& k, const SedimentEffects& fx,
                       SedimentWorkspace& ws) {
   const size_t n = f.size();
   const double V = k.volume, room = k.c_max * V;
-  const bool naive = fx.settling && k.advection == 1;
-  const bool printed = fx.diffusion && k.diffusion_form == 1;
+  const bool naive = fx.settling && k.advection == SettlingAdvection::kNaiveGradient;
+  const bool printed = fx.diffusion && k.diffusion_form == DiffusionForm::kPrinted;
   // v_s < 0 (ρs < ρ0): the donor–acceptor flux runs upwards at |v_s| (model.md).
   const bool rising = k.vs0 < 0.0;
   const PairFlux pair(k, fx.settling && !naive, fx.diffusion && !printed, printed);

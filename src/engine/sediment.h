@@ -49,8 +49,8 @@ struct SedimentConstants {
   double volume;      ///< V = m/ρ0 [m³]
   double c_max, rz, vs0, diffusion, k_eps, tau_c, shear_k, shear_n, rho_s;
   double mass;          ///< m, fluid particle mass (the printed eq. 19) [kg]
-  int advection;        ///< SimParams::advection: 0 donor–acceptor, 1 naive gradient
-  int diffusion_form;   ///< SimParams::diffusion_form: 0 consistent, 1 as printed
+  SettlingAdvection advection;  ///< SimParams::advection
+  DiffusionForm diffusion_form;  ///< SimParams::diffusion_form
   double min_distance;  ///< l is clamped below at this [m]
   CubicSpline spline;
   /// Richardson–Zaki f(C) = 1 − (C/C_max)^e, 0 for C ≥ C_max.

@@ -201,7 +201,7 @@ void World::searchNeighbors() {
 }
 
 void World::buildFluidLists() {
-  if (p_.neighbor_search == 1) {
+  if (p_.neighbor_search == NeighborSearch::kKdTree) {
     // The paper's kd-tree, rebuilt every step; the same sets as the grid, in ascending index.
     fluidTree_.build(f_.x);
     nbrs_.build(fluidTree_, f_.x, float(k_.h), true);
@@ -214,7 +214,7 @@ void World::buildFluidLists() {
 }
 
 void World::buildBoundaryLists() {
-  if (p_.neighbor_search == 1) {
+  if (p_.neighbor_search == NeighborSearch::kKdTree) {
     boundaryTree_.build(b_.x);
     bnbrs_.build(boundaryTree_, f_.x, float(k_.h), false);
     return;
@@ -382,7 +382,7 @@ void World::sedimentWork() {
     timed(Pass::kSediment, [&] {
       transferSediment(sk_, sfx, nbrs_, bnbrs_, b_, dt_, f_, acc_, sedimentWork_);
       const SedimentDefects& d = sedimentWork_.defects;
-      if (sk_.advection == 1 && sfx.settling && f_.size() > 0) {
+      if (sk_.advection == SettlingAdvection::kNaiveGradient && sfx.settling && f_.size() > 0) {
         defects_.created += d.created;
         defects_.clipped += d.clipped;
         defects_.c_min_raw = std::min(defects_.c_min_raw, d.c_min_raw);

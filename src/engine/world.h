@@ -72,7 +72,7 @@ struct Effects {
 
 /// The soil budget [m³]: terrain above the initial lowest height, sediment suspended in the
 /// fluid, sediment carried out by sinks and open walls, less the sediment a non-conservative
-/// numerical form made (the naive advection, sediment.advection = 1; 0 otherwise).
+/// numerical form made (the naive advection, sediment.advection = naive_gradient; 0 otherwise).
 struct SoilBudget {
   double terrain = 0, suspended = 0, removed = 0, initial = 0, created = 0;
   double total() const { return terrain + suspended + removed - created; }
@@ -185,8 +185,8 @@ class World {
   /// Height change of every vertex since the start [m].
   std::vector<double> heightChange() const;
   const Heightfield& initialTerrain() const { return hf0_; }
-  /// What the naive advection (sediment.advection = 1) made or destroyed since the start, and the
-  /// extreme C before the clamp (from the initial range on). With the conservative forms the
+  /// What the naive advection (sediment.advection = naive_gradient) made or destroyed since the
+  /// start, and the extreme C before the clamp (from the initial range on). With the conservative forms the
   /// volumes stay 0 and the C range is the initial one.
   const SedimentDefects& sedimentDefects() const { return defects_; }
   /// Sediment concentration C of particle i.

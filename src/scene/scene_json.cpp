@@ -165,7 +165,7 @@ json paramsToJson(const SimParams& p) {
     json& group = out[key.substr(0, dot)];
     const std::string name = key.substr(dot + 1);
     if (i.choices)
-      group[name] = i.choices[p.*i.imember];
+      group[name] = i.choices[i.getChoice(p)];
     else if (i.imember)
       group[name] = p.*i.imember;
     else

@@ -133,7 +133,7 @@ StudyRow hydrostatic(const std::string& study, const std::string& choice, SceneS
 
 // The settling lattice: the centroid's speed against |v_s| (least squares away from the top and
 // the floor), and the sediment the scheme made or lost, relative to what there was.
-std::vector<StudyRow> settling(const std::string& choice, int advection) {
+std::vector<StudyRow> settling(const std::string& choice, SettlingAdvection advection) {
   SceneSpec spec = presetSpec("settling");
   spec.params.advection = advection;
   World w(buildScene(spec).desc);
@@ -157,7 +157,7 @@ std::vector<StudyRow> settling(const std::string& choice, int advection) {
 
 // The diffusion lattice: dσ²/dt over 0.4 s once the pulse covers 1.5 h (or after 1 s, for a form
 // that hardly spreads it), against 2D.
-StudyRow diffusion(const std::string& choice, int form) {
+StudyRow diffusion(const std::string& choice, DiffusionForm form) {
   SceneSpec spec = presetSpec("diffusion");
   spec.params.diffusion_form = form;
   World w(buildScene(spec).desc);
@@ -178,7 +178,7 @@ StudyRow diffusion(const std::string& choice, int form) {
 }
 
 // The kd-tree against the grid: the same steps of a scene, positions compared by particle id.
-StudyRow neighborSearch(const std::string& choice, SceneSpec spec, long steps, int search,
+StudyRow neighborSearch(const std::string& choice, SceneSpec spec, long steps, NeighborSearch search,
                         const std::vector<Vec3f>* gridPositions, std::vector<Vec3f>* out) {
   spec.params.neighbor_search = search;
   World w(buildScene(spec).desc);
@@ -255,8 +255,8 @@ std::vector<StudyRow> runEngineStudies(const StudyOptions& o) {
   }
 
   // 3. Equation of state: Tait against Müller's ideal gas.
-  for (int eos : {0, 1}) {
-    const std::string name = eos ? "ideal gas" : "Tait";
+  for (EquationOfState eos : {EquationOfState::kTait, EquationOfState::kIdealGas}) {
+    const std::string name = eos == EquationOfState::kIdealGas ? "ideal gas" : "Tait";
     SceneSpec s = damBase;
     s.params.eos = eos;
     add(damBreak("eos", name, s, tMax));
@@ -272,27 +272,28 @@ std::vector<StudyRow> runEngineStudies(const StudyOptions& o) {
     // The dam break against Martin & Moyce with each search (after a few hundred steps the
     // splash amplifies the different summation order into visibly different particles, so
     // positions are compared on the pools, over a few steps).
-    for (int search : {0, 1}) {
+    for (NeighborSearch search : {NeighborSearch::kGrid, NeighborSearch::kKdTree}) {
       SceneSpec s = damBase;
       s.params.neighbor_search = search;
-      add(damBreak("neighbor_search", search ? "kd-tree" : "grid", s, tMax));
+      add(damBreak("neighbor_search", search == NeighborSearch::kKdTree ? "kd-tree" : "grid", s,
+                   tMax));
     }
     std::vector<Vec3f> grid;
     for (long n : o.quick ? std::vector<long>{10000} : std::vector<long>{10000, 50000, 130000}) {
       SceneSpec b = presetSpec("block", 1.0, n);
       const long bsteps = o.quick ? 10 : 30;
-      add(neighborSearch("grid", b, bsteps, 0, nullptr, &grid));
-      add(neighborSearch("kd-tree", b, bsteps, 1, &grid, nullptr));
+      add(neighborSearch("grid", b, bsteps, NeighborSearch::kGrid, nullptr, &grid));
+      add(neighborSearch("kd-tree", b, bsteps, NeighborSearch::kKdTree, &grid, nullptr));
     }
   }
 
   // 5. Sediment advection: donor–acceptor against the naive symmetric gradient.
-  for (auto& r : settling("donor–acceptor", 0)) add(r);
-  for (auto& r : settling("naive gradient", 1)) add(r);
+  for (auto& r : settling("donor–acceptor", SettlingAdvection::kDonorAcceptor)) add(r);
+  for (auto& r : settling("naive gradient", SettlingAdvection::kNaiveGradient)) add(r);
 
   // 6. Diffusion: the dimensionally consistent form against eq. (19) as printed.
-  add(diffusion("consistent", 0));
-  add(diffusion("as printed", 1));
+  add(diffusion("consistent", DiffusionForm::kConsistent));
+  add(diffusion("as printed", DiffusionForm::kPrinted));
 
   markPareto(rows);
   return rows;

@@ -102,19 +102,20 @@ TEST_CASE("live edits: parameters, sources, sinks and the water brush", "[effect
   CHECK(w.params().k_eps == 0.3);
   // The study's sediment forms switch live (the next step uses them); the neighbor search needs
   // a reset.
-  p.advection = 1;
-  p.diffusion_form = 1;
+  p.advection = SettlingAdvection::kNaiveGradient;
+  p.diffusion_form = DiffusionForm::kPrinted;
   w.setParams(p);
-  CHECK(w.params().advection == 1);
-  CHECK(w.params().diffusion_form == 1);
+  CHECK(w.params().advection == SettlingAdvection::kNaiveGradient);
+  CHECK(w.params().diffusion_form == DiffusionForm::kPrinted);
   w.step();
   CHECK(w.soilBudget().relativeError() < World::kSoilTolerance);  // the leak is counted
-  p.advection = p.diffusion_form = 0;
+  p.advection = SettlingAdvection::kDonorAcceptor;
+  p.diffusion_form = DiffusionForm::kConsistent;
   w.setParams(p);
-  p.neighbor_search = 1;
+  p.neighbor_search = NeighborSearch::kKdTree;
   CHECK_THROWS_WITH(w.setParams(p), Catch::Contains("engine.neighbor_search"));
-  CHECK(w.params().neighbor_search == 0);
-  p.neighbor_search = 0;
+  CHECK(w.params().neighbor_search == NeighborSearch::kGrid);
+  p.neighbor_search = NeighborSearch::kGrid;
   p.spacing *= 2;
   CHECK_THROWS_WITH(w.setParams(p), Catch::Contains("fluid.spacing"));
   CHECK(w.params().spacing == s.spec.params.spacing);

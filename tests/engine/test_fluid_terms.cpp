@@ -14,7 +14,7 @@ TEST_CASE("both equations of state give their pressure and invert", "[fluid]") {
   CHECK(tait.pressure(1010.0) == Approx(B * (std::pow(1.01, 7.0) - 1.0)).epsilon(1e-12));
   CHECK(tait.pressure(990.0) == 0.0);  // no tension at a free surface
   CHECK(tait.pressure(tait.densityFor(1234.5)) == Approx(1234.5).epsilon(1e-9));
-  p.eos = 1;  // Müller's ideal gas
+  p.eos = EquationOfState::kIdealGas;  // Müller's ideal gas
   SphConstants gas(p);
   CHECK(gas.pressure(1010.0) == Approx(625.0 * 10.0).epsilon(1e-12));
   CHECK(gas.pressure(gas.densityFor(1234.5)) == Approx(1234.5).epsilon(1e-9));
@@ -22,7 +22,7 @@ TEST_CASE("both equations of state give their pressure and invert", "[fluid]") {
 
 TEST_CASE("the ideal-gas equation of state also holds a tank of water still", "[fluid]") {
   Scene s = makePreset("hydrostatic", 0.3);
-  s.desc.params.eos = 1;
+  s.desc.params.eos = EquationOfState::kIdealGas;
   World w(s.desc);
   while (w.time() < 0.5) REQUIRE_NOTHROW(w.step());
   float vmax = 0;

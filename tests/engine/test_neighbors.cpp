@@ -191,7 +191,7 @@ TEST_CASE("a kd-tree run follows the grid run to rounding", "[neighbors][kdtree]
     INFO(preset);
     Scene s = makePreset(preset, 0.3);
     World grid(s.desc);
-    s.desc.params.neighbor_search = 1;
+    s.desc.params.neighbor_search = NeighborSearch::kKdTree;
     World kd(s.desc);
     // At construction the particles are the same to the bit: so are the neighbor sets.
     REQUIRE(fromLists(kd.neighbors()) == fromLists(grid.neighbors()));

@@ -121,7 +121,7 @@ TEST_CASE("diffusion spreads a pulse with variance 2·D·t per axis", "[sediment
 TEST_CASE("naive gradient advection moves sediment down (centroid at 0.49 |v_s|), leak counted",
           "[sediment][settling][study]") {
   Scene s = makePreset("settling");
-  s.desc.params.advection = 1;
+  s.desc.params.advection = SettlingAdvection::kNaiveGradient;
   World w(s.desc);
   const SimParams& p = w.params();
   const double vs = p.settlingSpeed(), h = p.support();
@@ -160,7 +160,7 @@ TEST_CASE("naive gradient advection moves sediment down (centroid at 0.49 |v_s|)
 TEST_CASE("eq. (19) as printed conserves sediment but diffuses at 6e-5 × 2·D",
           "[sediment][diffusion][study]") {
   Scene s = makePreset("diffusion");
-  s.desc.params.diffusion_form = 1;
+  s.desc.params.diffusion_form = DiffusionForm::kPrinted;
   World w(s.desc);
   const double D = w.params().diffusion;
   const double s0 = suspendedSediment(w);
