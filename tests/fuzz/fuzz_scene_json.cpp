@@ -18,10 +18,12 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   } catch (const SceneError&) {
     return 0;
   }
-  // Only scenes that take milliseconds: the fuzzer measures the reader, not the engine.
+  // Only scenes that take milliseconds: the fuzzer measures the reader, not the engine. (At
+  // 2·10⁴ particles a block of 16,000 took more than libFuzzer's 10 s for one step under the
+  // sanitizers on a loaded machine.)
   if (spec.terrain.kind == "heightmap") return 0;  // no files from fuzzed paths
   const Footprint f = estimateFootprint(spec);
-  if (f.unknown || f.vertices > 2e4 || f.particles > 2e4) return 0;
+  if (f.unknown || f.vertices > 2e4 || f.particles > 2e3) return 0;
   try {
     World w(buildScene(spec).desc);
     w.step();
