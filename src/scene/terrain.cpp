@@ -21,6 +21,7 @@ struct Gray {
 };
 
 constexpr long long kMaxPixels = 1LL << 27;  // 134 M pixels: 1 GB of doubles
+constexpr double kMaxPixelsPerByte = 4096;  // no image format compresses further
 
 Gray readRaw(const TerrainSpec& t) {
   const std::string& f = t.file;
@@ -68,6 +69,12 @@ Gray decodeImage(const std::string& f, const std::vector<unsigned char>& bytes) 
   if (1LL * w * h > kMaxPixels)
     throw TerrainError(f + ": " + std::to_string(w) + " × " + std::to_string(h) +
                        " pixels is more than this build reads");
+  // No format stb reads packs more than a few thousand pixels into a byte (deflate about 1,000,
+  // LZW with 12-bit codes about 2,700): a header that claims more is not an image, and decoding
+  // it would fill a buffer of the claimed size (a 60-byte file asking for 10⁸ pixels, 1 GB).
+  if (1.0 * w * h > kMaxPixelsPerByte * double(size))
+    throw TerrainError(f + ": its header claims " + std::to_string(w) + " × " + std::to_string(h) +
+                       " pixels in " + std::to_string(size) + " bytes, more than any image format holds");
   Gray g;
   g.w = w, g.h = h;
   g.v.resize(size_t(w) * h);
