@@ -21,7 +21,7 @@ struct Gray {
 };
 
 constexpr long long kMaxPixels = 1LL << 27;  // 134 M pixels: 1 GB of doubles
-constexpr double kMaxPixelsPerByte = 4096;  // no image format compresses further
+constexpr double kMaxPixelsPerByte = 1100;  // deflate (PNG) packs at most about 1,030
 
 Gray readRaw(const TerrainSpec& t) {
   const std::string& f = t.file;
@@ -69,12 +69,13 @@ Gray decodeImage(const std::string& f, const std::vector<unsigned char>& bytes) 
   if (1LL * w * h > kMaxPixels)
     throw TerrainError(f + ": " + std::to_string(w) + " × " + std::to_string(h) +
                        " pixels is more than this build reads");
-  // No format stb reads packs more than a few thousand pixels into a byte (deflate about 1,000,
-  // LZW with 12-bit codes about 2,700): a header that claims more is not an image, and decoding
-  // it would fill a buffer of the claimed size (a 60-byte file asking for 10⁸ pixels, 1 GB).
+  // Deflate packs at most about 1,030 bytes into one (PNG rows add a filter byte each), and the
+  // run-length formats stb also reads far fewer: a header that claims more pixels per byte of
+  // the file is not a heightmap, and decoding it would fill a buffer of the claimed size (a
+  // 69-byte file asking for 10⁸ pixels, 1 GB; a 49 kB one for 10⁸, found by the fuzzer).
   if (1.0 * w * h > kMaxPixelsPerByte * double(size))
     throw TerrainError(f + ": its header claims " + std::to_string(w) + " × " + std::to_string(h) +
-                       " pixels in " + std::to_string(size) + " bytes, more than any image format holds");
+                       " pixels in " + std::to_string(size) + " bytes, more than a PNG can hold");
   Gray g;
   g.w = w, g.h = h;
   g.v.resize(size_t(w) * h);
