@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <string>
 
+#include "engine/sources.h"
 #include "scene/presets.h"
 #include "scene/scene_json.h"
 
@@ -24,6 +25,13 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   if (spec.terrain.kind == "heightmap") return 0;  // no files from fuzzed paths
   const Footprint f = estimateFootprint(spec);
   if (f.unknown || f.vertices > 2e4 || f.particles > 2e3) return 0;
+  // Nor sources or rain that place thousands of particles in the first step (a source 2 m wide
+  // has 31,000 slots: a timeout too).
+  const double ds2 = spec.params.spacing * spec.params.spacing;
+  for (const Source& src : spec.sources)
+    if (double(diskLattice(src.radius, spec.params.spacing).size()) > 2e3) return 0;
+  for (const Rain& r : spec.rain)
+    if ((r.hi_x - r.lo_x) * (r.hi_z - r.lo_z) / ds2 > 2e3) return 0;
   try {
     World w(buildScene(spec).desc);
     w.step();
