@@ -7,8 +7,10 @@
 namespace scour {
 
 namespace {
-constexpr float kNear = 0.01f, kFar = 1000.0f;  // the renderer's clip planes
-}
+// Any clip planes do: a pixel's ray and a point's pixel do not depend on them. The far one also
+// ends the march.
+constexpr float kNear = 0.01f, kFar = 1000.0f;
+}  // namespace
 
 Camera Orbit::camera() const {
   Camera c;
@@ -72,7 +74,8 @@ bool toWindow(const Camera& c, float aspect, const Eigen::Vector3f& p, int w, in
   return std::isfinite(pixel.x()) && std::isfinite(pixel.y());
 }
 
-float segmentDistance(const Eigen::Vector2f& p, const Eigen::Vector2f& a, const Eigen::Vector2f& b) {
+float segmentDistance(const Eigen::Vector2f& p, const Eigen::Vector2f& a,
+                      const Eigen::Vector2f& b) {
   const Eigen::Vector2f u = b - a;
   const float len2 = u.squaredNorm();
   const float t = len2 > 0 ? std::clamp((p - a).dot(u) / len2, 0.0f, 1.0f) : 0.0f;

@@ -84,10 +84,6 @@ std::array<Eigen::Vector3d, 3> Heightfield::triangleCorners(int tri) const {
   return c;
 }
 
-}  // namespace scour
-
-namespace scour {
-
 WallSurface::WallSurface(const Heightfield& terrain, double radius) {
   const int rx = int(std::floor(radius / terrain.dx() + 1e-9));
   const int rz = int(std::floor(radius / terrain.dz() + 1e-9));

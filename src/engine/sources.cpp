@@ -23,7 +23,8 @@ Emitter::Emitter(const Source& s, double spacing) : src(s) {
                                                               : Eigen::Vector3d::UnitX();
   Eigen::Vector3d e1 = src.direction.cross(helper).normalized();
   Eigen::Vector3d e2 = src.direction.cross(e1);
-  for (const Eigen::Vector2d& uw : diskLattice(src.radius, spacing)) slots.push_back(uw.x() * e1 + uw.y() * e2);
+  for (const Eigen::Vector2d& uw : diskLattice(src.radius, spacing))
+    slots.push_back(uw.x() * e1 + uw.y() * e2);
   speed = src.rate / (double(slots.size()) * spacing * spacing);
   travelled = spacing;  // the first layer is due at the start time
 }

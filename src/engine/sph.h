@@ -56,7 +56,6 @@ struct SphConstants {
   /// A(d) = ∫ W_poly6 over a plane at distance |d| [1/m]: in the continuum, how fast the wall's
   /// share of the density grows as d shrinks (−dΦ/dd).
   double planeDensity(double d) const;
-  /// G(d): missing Σ_j |∇W_spiky|·(normal component) beyond the plane, per unit particle mass.
   /// The speed of sound at density ρ, √(dp/dρ): c_s for the linear law, c_s (ρ/ρ0)³ for Tait's
   /// above ρ0. The CFL step must follow it: a particle compressed to 1.45 ρ0 carries sound 3×
   /// faster than c_s, and a step sized for c_s lets its compression grow without bound.
@@ -64,6 +63,7 @@ struct SphConstants {
     const double c = std::sqrt(c2);
     return tait && rho > rho0 ? c * std::pow(rho / rho0, 3.0) : c;
   }
+  /// G(d): missing Σ_j |∇W_spiky|·(normal component) beyond the plane, per unit particle mass.
   double wallGradient(double d) const { return lookup(grad, d); }
   /// Missing share of Σ V x_ij x_ijᵀ |∇W|/r (= I in the interior) beyond the plane, along its
   /// normal and along a tangent.

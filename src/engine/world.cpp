@@ -67,6 +67,11 @@ void require(bool ok, const std::string& what) {
   if (!ok) throw std::invalid_argument(what);
 }
 
+// What the walls see of the terrain: its Δs/2 envelope (WallSurface).
+WallSurface wallSurfaceFor(const Heightfield& terrain, const SimParams& p) {
+  return WallSurface(terrain, 0.5 * p.spacing);
+}
+
 // A source is checked against the limits (engine/limits.h) before its slots are made.
 Emitter makeEmitter(const Source& src, const SimParams& p, const std::string& at) {
   require(src.radius > 0 && std::isfinite(src.radius), at + ".radius must be positive");
@@ -102,7 +107,7 @@ World::World(WorldDesc d)
   require(hf_.dx() > 0 && hf_.dz() > 0, "terrain: cell size must be positive");
   for (double h : hf_.heights()) require(std::isfinite(h), "terrain: heights must be finite");
   hf0_ = hf_;
-  wall_ = WallSurface(hf_, 0.5 * p_.spacing);
+  wall_ = wallSurfaceFor(hf_, p_);
   vertexArea_ = vertexAreas(hf_);
   terrainReference_ = hf_.minHeight();
   acc_.resize(hf_.triangleCount());
@@ -236,7 +241,8 @@ void World::computeAccelerations() {
       // f_.v holds v(t + Δt/2) here
       densityRate_ = integrateDensity(k_, nbrs_, wall_.of(hf_), dom_, f_.v, dt_, f_);
     else
-      computeDensity(k_, nbrs_, wall_.of(hf_), dom_, f_), densityRate_ = 0;  // no continuity rate to bound Δt
+      // No continuity rate to bound Δt.
+      computeDensity(k_, nbrs_, wall_.of(hf_), dom_, f_), densityRate_ = 0;
   });
   timed(Pass::kForces, [&] { computeForces(k_, nbrs_, vhat_, f_); });
   timed(Pass::kBoundaryForces, [&] { applyBoundaryForces(k_, wall_.of(hf_), dom_, vhat_, f_); });
@@ -425,7 +431,8 @@ void World::setParams(const SimParams& q) {
     require(bad.empty(), bad);
   }
   for (size_t r = 0; r < rain_.size(); ++r) {
-    const std::string bad = checkRainWork(rain_[r].rain, rainArea(rain_[r].rain), q, "rain[" + std::to_string(r) + "]");
+    const std::string at = "rain[" + std::to_string(r) + "]";
+    const std::string bad = checkRainWork(rain_[r].rain, rainArea(rain_[r].rain), q, at);
     require(bad.empty(), bad);
   }
   p_ = resolve(q);
@@ -837,7 +844,7 @@ void World::loadState(std::istream& in) {
   f_ = std::move(f);
   vhat_ = std::move(vhat);
   hf_.heights() = std::move(heights);
-  wall_ = WallSurface(hf_, 0.5 * p_.spacing);
+  wall_ = wallSurfaceFor(hf_, p_);
   b_ = std::move(b);
   sampler_.setActiveTiles(std::move(tiles));
   energyLedger_ = mechanicalEnergy();

@@ -186,8 +186,8 @@ class World {
   std::vector<double> heightChange() const;
   const Heightfield& initialTerrain() const { return hf0_; }
   /// What the naive advection (sediment.advection = naive_gradient) made or destroyed since the
-  /// start, and the extreme C before the clamp (from the initial range on). With the conservative forms the
-  /// volumes stay 0 and the C range is the initial one.
+  /// start, and the extreme C before the clamp (from the initial range on). With the conservative
+  /// forms the volumes stay 0 and the C range is the initial one.
   const SedimentDefects& sedimentDefects() const { return defects_; }
   /// Sediment concentration C of particle i.
   double concentration(size_t i) const { return f_.sed[i] / sk_.volume; }

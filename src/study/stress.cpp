@@ -312,8 +312,8 @@ StressScene needleSource() {
   return s;
 }
 
-// A jet of `speed` shot down from 0.4 m above the floor of a closed 0.5 m box (c_s = 80 m/s):
-// the splash crowds the corners.
+// A jet of `speed` shot down from 0.4 m above the floor of a closed 0.5 m box, at sound speed
+// `soundSpeed`: the splash crowds the corners.
 StressScene fastJet(const std::string& name, const std::string& what, double speed,
                     double soundSpeed, double duration) {
   StressScene s = named(name, what, duration);
@@ -336,20 +336,21 @@ StressScene fastJet(const std::string& name, const std::string& what, double spe
 // compressed one near a corner took it to 2.9 ρ0 in one step; this scene gained 6.2 % of the
 // energy at hand by 0.375 s.
 StressScene fastJetFloor() {
-  return fastJet("fast-jet-floor", "an 8 m/s jet onto the floor of a closed 0.5 m box", 8.0, 80.0, 0.6);
+  return fastJet("fast-jet-floor", "an 8 m/s jet onto the floor of a closed 0.5 m box", 8.0, 80.0,
+                 0.6);
 }
 
 // Needles 8 cm high and 2 cm (Δs) apart on a grid of Δs/2. Before the walls saw the terrain
 // through its Δs/2 envelope, the plane under a particle turned with every cell and the first
 // impact gained 8.8 % energy in 0.056 s; before the CFL step followed the compressed sound speed,
-// a 10 m/s jet put a particle 0.55 Δs below the terrain. The sound speed is 10 × the impact speed, the
-// weakly compressible rule. Faster than that rule allows (10 m/s at c_s = 80 or 104 m/s) a
+// a 10 m/s jet put a particle 0.55 Δs below the terrain. The sound speed is 10 × the impact
+// speed, the weakly compressible rule. Faster than that rule allows (10 m/s at c_s = 80 or 104 m/s) a
 // squeezed particle is still shot off at 50 m/s and can reach 0.5 Δs below the terrain
 // (docs/stress.md).
 StressScene jetOnSpikes() {
-  const double v = 8.0, impact = std::sqrt(v * v + 2.0 * 9.81 * 0.4);
-  StressScene s =
-      fastJet("jet-on-spikes", "an 8 m/s jet onto fBm needles finer than Δs", v, 10.0 * impact, 0.6);
+  const double v = 8.0, impact = std::sqrt(v * v + 2.0 * SimParams{}.gravity * 0.4);
+  StressScene s = fastJet("jet-on-spikes", "an 8 m/s jet onto fBm needles finer than Δs", v,
+                          10.0 * impact, 0.6);
   s.spec.terrain.kind = "fbm";
   s.spec.terrain.noise.amplitude = 0.08;
   s.spec.terrain.noise.feature = 0.02;

@@ -42,7 +42,8 @@ TEST_CASE("the terrain picked under a pixel projects back to that pixel", "[app]
   CHECK((c.eye - overviewCamera(f).eye).norm() < 1e-4f);
   const int w = 800, h = 600;
   const float aspect = float(w) / float(h);
-  for (auto [mx, my] : {std::pair{400.0, 300.0}, std::pair{250.0, 380.0}, std::pair{520.0, 260.0}}) {
+  for (auto [mx, my] :
+       {std::pair{400.0, 300.0}, std::pair{250.0, 380.0}, std::pair{520.0, 260.0}}) {
     INFO("pixel " << mx << ", " << my);
     Eigen::Vector3f hit;
     REQUIRE(pickTerrain(f, c, aspect, mx, my, w, h, hit));
@@ -66,7 +67,7 @@ TEST_CASE("the terrain picked under a pixel projects back to that pixel", "[app]
 TEST_CASE("distance to a segment, and a source kept over the terrain", "[app][viewport]") {
   CHECK(segmentDistance({0, 5}, {-10, 0}, {10, 0}) == Approx(5));
   CHECK(segmentDistance({13, 4}, {-10, 0}, {10, 0}) == Approx(5));  // past the end: to b
-  CHECK(segmentDistance({3, 4}, {0, 0}, {0, 0}) == Approx(5));       // a point segment
+  CHECK(segmentDistance({3, 4}, {0, 0}, {0, 0}) == Approx(5));      // a point segment
   const Frame f = slopeFrame();
   // A disk of 0.1 m centred past the +x edge comes back to x = 0.9, 0.05 m above the terrain.
   const Eigen::Vector3d c = overTerrain(f, {1.2, 0.0, 0.5}, 0.1, 0.05);

@@ -124,7 +124,8 @@ TEST_CASE("the wall surface is the terrain's envelope, never below it, and follo
   auto mx = [&](int i, int k) {
     return std::max({t.at(i, k), t.at(i - 1, k), t.at(i + 1, k), t.at(i, k - 1), t.at(i, k + 1)});
   };
-  CHECK(w.of(t).at(10, 10) == Approx((mx(10, 10) + mx(9, 10) + mx(11, 10) + mx(10, 9) + mx(10, 11)) / 5));
+  const double mean = (mx(10, 10) + mx(9, 10) + mx(11, 10) + mx(10, 9) + mx(10, 11)) / 5;
+  CHECK(w.of(t).at(10, 10) == Approx(mean));
 
   // Erosion moves one cell's corners: following it gives what a rebuild gives, to the bit.
   Heightfield moved = t;

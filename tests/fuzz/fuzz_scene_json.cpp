@@ -5,7 +5,7 @@
 #include <cstdint>
 #include <string>
 
-#include "engine/sources.h"
+#include "engine/limits.h"
 #include "scene/presets.h"
 #include "scene/scene_json.h"
 
@@ -25,13 +25,15 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   if (spec.terrain.kind == "heightmap") return 0;  // no files from fuzzed paths
   const Footprint f = estimateFootprint(spec);
   if (f.unknown || f.vertices > 2e4 || f.particles > 2e3) return 0;
-  // Nor sources or rain that place thousands of particles in the first step (a source 2 m wide
-  // has 31,000 slots: a timeout too).
-  const double ds2 = spec.params.spacing * spec.params.spacing;
+  // Nor sources or rain that may place thousands of particles in a step (a source 2 m wide has
+  // 31,000 slots: a timeout too), counted as the limits count them (engine/limits.h).
+  const double ds = spec.params.spacing, dt = longestStep(spec.params);
   for (const Source& src : spec.sources)
-    if (double(diskLattice(src.radius, spec.params.spacing).size()) > 2e3) return 0;
-  for (const Rain& r : spec.rain)
-    if ((r.hi_x - r.lo_x) * (r.hi_z - r.lo_z) / ds2 > 2e3) return 0;
+    if (sourcePlacedPerStep(src, ds, sourceSlotBound(src.radius, ds), dt) > 2e3) return 0;
+  for (const Rain& r : spec.rain) {
+    const double area = rainArea(r, 0.0, spec.terrain.length_x, 0.0, spec.terrain.length_z);
+    if (rainPlacedPerStep(r, area, ds, dt) > 2e3) return 0;
+  }
   try {
     World w(buildScene(spec).desc);
     w.step();
