@@ -1,0 +1,374 @@
+#include "app/panels.h"
+
+#include <imgui.h>
+
+#include <algorithm>
+#include <cfloat>
+#include <cmath>
+#include <vector>
+
+#include "scene/scene_json.h"
+
+namespace scour {
+
+namespace {
+
+ImVec2 imvec(const Eigen::Vector2f& p) { return {p.x(), p.y()}; }
+
+void pushBounded(std::deque<float>& q, float v) {
+  q.push_back(v);
+  if (q.size() > 200) q.pop_front();
+}
+
+// Around a sink's footprint on the terrain, 16 points a side; false if a point is not seen.
+bool sinkOutline(const View& view, const Sink& k, std::vector<ImVec2>& outline) {
+  const Frame& frame = view.snapshot->frame;
+  const double xMax = frame.x0 + (frame.nx - 1) * frame.dx,
+               zMax = frame.z0 + (frame.nz - 1) * frame.dz;
+  const double x0 = std::max(k.lo.x(), frame.x0), x1 = std::min(k.hi.x(), xMax);
+  const double z0 = std::max(k.lo.z(), frame.z0), z1 = std::min(k.hi.z(), zMax);
+  if (!(x0 < x1 && z0 < z1)) return false;
+  const double corner[5][2] = {{x0, z0}, {x1, z0}, {x1, z1}, {x0, z1}, {x0, z0}};
+  for (int side = 0; side < 4; ++side)
+    for (int t = 0; t < 16; ++t) {
+      const double u = t / 16.0;
+      const double x = (1 - u) * corner[side][0] + u * corner[side + 1][0];
+      const double z = (1 - u) * corner[side][1] + u * corner[side + 1][1];
+      float g = 0;
+      Eigen::Vector2f q;
+      if (!terrainHeight(frame, x, z, g) ||
+          !toWindow(view.camera, view.aspect,
+                    Eigen::Vector3f(float(x), g + 0.5f * frame.spacing, float(z)), view.width,
+                    view.height, q))
+        return false;
+      outline.push_back(imvec(q));
+    }
+  return true;
+}
+
+void plot(const char* name, const std::deque<float>& q) {
+  std::vector<float> v(q.begin(), q.end());
+  char overlay[64];
+  std::snprintf(overlay, sizeof overlay, "%.2f ms", v.empty() ? 0.0f : v.back());
+  ImGui::PlotLines(name, v.data(), int(v.size()), 0, overlay, 0.0f, FLT_MAX, {0, 40});
+}
+
+void snapshotsSection(const Snapshot& snap, Actions& actions) {
+  if (!ImGui::CollapsingHeader("Snapshots", ImGuiTreeNodeFlags_DefaultOpen)) return;
+  if (ImGui::Button("take snapshot")) actions.command(cmd::TakeSnapshot{});
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("keeps the terrain, the water, its sediment and the sources as they are now");
+  for (const SnapshotInfo& k : snap.snapshots) {
+    ImGui::PushID(k.id);
+    ImGui::Text("#%d  t = %.3f s  step %ld  %zu particles", k.id, k.time, k.step, k.particles);
+    ImGui::SameLine();
+    if (ImGui::SmallButton("restore")) actions.restoreSnapshot(k.id);
+    if (ImGui::IsItemHovered())
+      ImGui::SetTooltip(
+          "back to this terrain, water and sources, with the parameters as they are now");
+    ImGui::SameLine();
+    if (ImGui::SmallButton("delete")) actions.command(cmd::DeleteSnapshot{k.id});
+    ImGui::PopID();
+  }
+}
+
+void parameterRow(const Snapshot& snap, const ParamInfo& p, Actions& actions) {
+  const std::string key = p.key;
+  const std::string label = std::string(p.label) + " " + p.symbol +
+                            (p.unit && *p.unit ? std::string(" [") + p.unit + "]" : "");
+  const double current = getParam(snap.params, p);
+  if (p.choices) {
+    int v = int(current);
+    int count = 0;
+    while (p.choices[count]) ++count;
+    if (ImGui::Combo(label.c_str(), &v, p.choices, count)) actions.setParameter(key, p.choices[v]);
+  } else {
+    double v = current;
+    const bool logScale = p.min > 0 && p.max / p.min > 100;
+    if (ImGui::SliderScalar(label.c_str(), ImGuiDataType_Double, &v, &p.min, &p.max, "%.4g",
+                            logScale ? ImGuiSliderFlags_Logarithmic : 0))
+      actions.setParameter(key, formatNumber(v), ImGui::IsItemActive() && !ImGui::IsItemActivated());
+  }
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("%s (%s): %s  range [%g, %g]", key.c_str(), p.symbol, p.help, p.min, p.max);
+}
+
+void sourceRow(const Snapshot& snap, size_t i, Actions& actions) {
+  const float spacing = snap.frame.spacing;
+  ImGui::PushID(int(i));
+  Source s = snap.sources[i];
+  bool changed = false;
+  ImGui::Text("source %zu at (%.2f, %.2f, %.2f)", i, s.center.x(), s.center.y(), s.center.z());
+  float rate = float(s.rate * 1e3), radius = float(s.radius);
+  float dir[3] = {float(s.direction.x()), float(s.direction.y()), float(s.direction.z())};
+  if (ImGui::SliderFloat3("direction", dir, -1.0f, 1.0f, "%.2f") &&
+      Eigen::Vector3f(dir[0], dir[1], dir[2]).norm() > 1e-3f) {
+    s.direction = Eigen::Vector3d(dir[0], dir[1], dir[2]);
+    changed = true;
+  }
+  changed |= ImGui::SliderFloat("rate [L/s]", &rate, 0.01f, 50.0f, "%.3g",
+                                ImGuiSliderFlags_Logarithmic);
+  changed |= ImGui::SliderFloat("radius [m]", &radius, spacing, 50 * spacing, "%.3g");
+  if (changed) {
+    s.rate = rate * 1e-3, s.radius = radius;
+    actions.perform({{cmd::UpdateSource{i, s}},
+                     {cmd::UpdateSource{i, snap.sources[i]}},
+                     "edit source " + std::to_string(i),
+                     "source" + std::to_string(i)},
+                    ImGui::IsItemActive() && !ImGui::IsItemActivated());
+  }
+  if (ImGui::Button("delete"))
+    actions.perform({{cmd::RemoveSource{i}},
+                     {cmd::AddSource{snap.sources[i]}},
+                     "delete source " + std::to_string(i),
+                     ""},
+                    false);
+  ImGui::PopID();
+}
+
+void sinkRow(const Snapshot& snap, size_t i, Actions& actions) {
+  ImGui::PushID("sink");
+  ImGui::PushID(int(i));
+  const Sink& k = snap.sinks[i];
+  const Eigen::Vector3d centre = 0.5 * (k.lo + k.hi), half = 0.5 * (k.hi - k.lo);
+  ImGui::Text("sink %zu at (%.2f, %.2f, %.2f)", i, centre.x(), centre.y(), centre.z());
+  float h[3] = {float(half.x()), float(half.y()), float(half.z())};
+  if (ImGui::DragFloat3("half-size [m]", h, 0.002f, 0.5f * snap.frame.spacing, 10.0f, "%.3g",
+                        ImGuiSliderFlags_AlwaysClamp) &&
+      std::isfinite(h[0] + h[1] + h[2]) && std::min({h[0], h[1], h[2]}) > 0) {
+    Sink resized;
+    const Eigen::Vector3d r(h[0], h[1], h[2]);
+    resized.lo = centre - r, resized.hi = centre + r;
+    actions.perform({{cmd::UpdateSink{i, resized}},
+                     {cmd::UpdateSink{i, k}},
+                     "resize sink " + std::to_string(i),
+                     "sink" + std::to_string(i)},
+                    ImGui::IsItemActive() && !ImGui::IsItemActivated());
+  }
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("half the box's size along x, y and z, about its centre");
+  if (ImGui::Button("delete"))
+    actions.perform(
+        {{cmd::RemoveSink{i}}, {cmd::AddSink{k}}, "delete sink " + std::to_string(i), ""}, false);
+  ImGui::PopID();
+  ImGui::PopID();
+}
+
+}  // namespace
+
+void TimePlots::addSteps(const Snapshot& snap) {
+  const long step = snap.frame.step;
+  if (step > 0 && lastStep_ >= 0 && step > lastStep_) {
+    double g[3] = {0, 0, 0};
+    for (size_t p = 0; p < size_t(Pass::kCount); ++p) {
+      const int k = int(table1Group(Pass(p)));
+      if (k < 3) g[k] += (snap.passSeconds[p] - lastPass_[p]) / double(step - lastStep_);
+    }
+    pushBounded(sph, float(g[0] * 1e3));
+    pushBounded(erosion, float(g[1] * 1e3));
+    pushBounded(boundary, float(g[2] * 1e3));
+  }
+  lastPass_ = snap.passSeconds;
+  lastStep_ = step;
+}
+
+void TimePlots::addRender(double seconds) { pushBounded(render, float(seconds * 1e3)); }
+
+void drawMarkers(const Actions& actions, int hovered) {
+  ImDrawList* draw = ImGui::GetBackgroundDrawList();
+  const Snapshot& snap = *actions.view().snapshot;
+  const SourceDrag& drag = actions.drag();
+  for (size_t i = 0; i < snap.sources.size(); ++i) {
+    const bool held = drag.index == int(i);
+    Eigen::Vector2f foot, top;
+    if (!actions.sourceStem(held && drag.moved ? drag.last : snap.sources[i].center, foot, top))
+      continue;
+    const ImU32 colour =
+        held || hovered == int(i) ? IM_COL32(255, 230, 60, 255) : IM_COL32(255, 140, 30, 230);
+    draw->AddLine(imvec(foot), imvec(top), colour, 2.0f);
+    draw->AddCircle(imvec(foot), 4.0f, colour, 12, 2.0f);
+    draw->AddCircleFilled(imvec(top), 6.0f, colour, 12);
+    draw->AddText({top.x() + 8, top.y() - 8}, colour, ("source " + std::to_string(i)).c_str());
+  }
+  for (size_t i = 0; i < snap.sinks.size(); ++i) {
+    std::vector<ImVec2> outline;
+    if (!sinkOutline(actions.view(), snap.sinks[i], outline)) continue;
+    const ImU32 colour = IM_COL32(200, 80, 255, 230);
+    draw->AddPolyline(outline.data(), int(outline.size()), colour, ImDrawFlags_Closed, 2.0f);
+    draw->AddText(outline[0], colour, ("sink " + std::to_string(i)).c_str());
+  }
+}
+
+void runPanel(const Snapshot& snap, Actions& actions, PanelState& state) {
+  ImGui::SetNextWindowPos({10, 10}, ImGuiCond_FirstUseEver);
+  ImGui::SetNextWindowSize({340, 0}, ImGuiCond_FirstUseEver);
+  ImGui::Begin("Run");
+  if (ImGui::Button(snap.paused ? "Play" : "Pause"))
+    actions.command(snap.paused ? SimCommand(cmd::Resume{}) : SimCommand(cmd::Pause{}));
+  ImGui::SameLine();
+  if (ImGui::Button("Step")) actions.command(cmd::StepOnce{});
+  ImGui::SameLine();
+  if (ImGui::Button("Reset")) actions.command(cmd::Reset{});
+  ImGui::SameLine();
+  if (ImGui::Button("Undo")) actions.undo();
+  if (ImGui::IsItemHovered() && actions.history().nextUndo())
+    ImGui::SetTooltip("%s", actions.history().nextUndo()->what.c_str());
+  ImGui::SameLine();
+  if (ImGui::Button("Redo")) actions.redo();
+  if (ImGui::IsItemHovered() && actions.history().nextRedo())
+    ImGui::SetTooltip("%s", actions.history().nextRedo()->what.c_str());
+  const ImGuiIO& io = ImGui::GetIO();
+  if (!io.WantCaptureKeyboard && io.KeyCtrl) {
+    if (ImGui::IsKeyPressed(ImGuiKey_Z)) actions.undo();
+    if (ImGui::IsKeyPressed(ImGuiKey_Y)) actions.redo();
+  }
+  if (ImGui::SliderInt("steps per frame", &state.stepsPerFrame, 1, 50))
+    actions.command(cmd::SetStepsPerFrame{state.stepsPerFrame});
+  const Frame& frame = snap.frame;
+  ImGui::Text("t = %.3f s   step %ld   %zu particles", frame.time, frame.step, frame.particles());
+  ImGui::Text("%.1f steps/s", snap.stepsPerSecond);
+  snapshotsSection(snap, actions);  // whole world states to go back to (worker.h)
+  ImGui::End();
+}
+
+void parametersPanel(const Snapshot& snap, Actions& actions) {
+  ImGui::SetNextWindowPos({10, 140}, ImGuiCond_FirstUseEver);
+  ImGui::SetNextWindowSize({340, 420}, ImGuiCond_FirstUseEver);
+  ImGui::Begin("Parameters");
+  std::string group;
+  bool open = false;
+  for (const ParamInfo& p : paramTable()) {
+    const std::string key = p.key, g = key.substr(0, key.find('.'));
+    if (g != group) {
+      group = g;
+      open = ImGui::CollapsingHeader(g.c_str(),
+                                     g == "erosion" ? ImGuiTreeNodeFlags_DefaultOpen : 0);
+    }
+    if (open) parameterRow(snap, p, actions);
+  }
+  ImGui::End();
+}
+
+void displayPanel(PanelState& state, float windowWidth) {
+  RenderSettings& settings = state.settings;
+  ImGui::SetNextWindowPos({windowWidth - 330, 10}, ImGuiCond_FirstUseEver);
+  ImGui::SetNextWindowSize({320, 0}, ImGuiCond_FirstUseEver);
+  ImGui::Begin("Display");
+  int mode = int(settings.terrain);
+  ImGui::RadioButton("shaded", &mode, 0);
+  ImGui::SameLine();
+  ImGui::RadioButton("erosion", &mode, 1);
+  ImGui::SameLine();
+  ImGui::RadioButton("sediment", &mode, 2);
+  settings.terrain = RenderSettings::Terrain(mode);
+  ImGui::Checkbox("water surface", &settings.water);
+  ImGui::Checkbox("reflections", &settings.reflections);
+  ImGui::SameLine();
+  ImGui::Checkbox("refraction", &settings.refraction);
+  ImGui::SameLine();
+  ImGui::Checkbox("caustics", &settings.caustics);
+  int particles = int(settings.particles);
+  ImGui::Text("particles:");
+  ImGui::SameLine();
+  ImGui::RadioButton("off", &particles, 0);
+  ImGui::SameLine();
+  ImGui::RadioButton("C", &particles, 1);
+  ImGui::SameLine();
+  ImGui::RadioButton("speed", &particles, 2);
+  settings.particles = RenderSettings::Particles(particles);
+  ImGui::TextDisabled(
+      "left drag: orbit, right drag: pan, wheel: zoom;\ndrag a source's marker to move it");
+  ImGui::End();
+}
+
+void waterPanel(const Snapshot& snap, const SceneSpec& scene, Actions& actions, float windowWidth) {
+  const float spacing = snap.frame.spacing;
+  ImGui::SetNextWindowPos({windowWidth - 330, 200}, ImGuiCond_FirstUseEver);
+  ImGui::SetNextWindowSize({320, 0}, ImGuiCond_FirstUseEver);
+  ImGui::Begin("Water");
+  for (auto [t, label] : {std::pair{Tool::kSource, "click the terrain to place a source"},
+                          std::pair{Tool::kSink, "click the terrain to place a sink"},
+                          std::pair{Tool::kBrush, "brush: click to paint water"}}) {
+    bool on = actions.tool == t;
+    if (ImGui::Checkbox(label, &on)) actions.toggle(t, on);
+  }
+  ImGui::TextDisabled("drag a source's marker to move it (one undo step)");
+  ImGui::SliderFloat("brush radius [m]", &actions.brushRadius, spacing, 30 * spacing, "%.3g");
+  ImGui::SliderFloat("new sink half-size [m]", &actions.sinkRadius, 0.5f * spacing, 30 * spacing,
+                     "%.3g", ImGuiSliderFlags_AlwaysClamp);
+  Effects effects = scene.effects;
+  if (!scene.rain.empty() && ImGui::Checkbox("rain (on reset)", &effects.rain)) {
+    actions.command(cmd::SetEffects{effects});
+    actions.command(cmd::Reset{});
+  }
+  ImGui::Text("%ld particles from sources, %ld painted", snap.emitted, snap.painted);
+  for (size_t i = 0; i < snap.sources.size(); ++i) sourceRow(snap, i, actions);
+  ImGui::Separator();
+  ImGui::Text("%zu sinks; %ld particles removed by them", snap.sinks.size(), snap.removedBySinks);
+  for (size_t i = 0; i < snap.sinks.size(); ++i) sinkRow(snap, i, actions);
+  ImGui::End();
+}
+
+void statsPanel(const Snapshot& snap, const TimePlots& plots, float windowWidth) {
+  ImGui::SetNextWindowPos({windowWidth - 330, 380}, ImGuiCond_FirstUseEver);
+  ImGui::SetNextWindowSize({320, 0}, ImGuiCond_FirstUseEver);
+  ImGui::Begin("Stats");
+  plot("SPH", plots.sph);
+  plot("erosion", plots.erosion);
+  plot("boundary", plots.boundary);
+  plot("render", plots.render);
+  ImGui::Text("soil: terrain %.6g  suspended %.3g  removed %.3g m3", snap.soil.terrain,
+              snap.soil.suspended, snap.soil.removed);
+  ImGui::Text("budget error %.2e (relative)", snap.soil.relativeError());
+  ImGui::End();
+}
+
+void filePanel(Actions& actions, PanelState& state) {
+  ImGui::SetNextWindowPos({360, 10}, ImGuiCond_FirstUseEver);
+  ImGui::SetNextWindowSize({360, 0}, ImGuiCond_FirstUseEver);
+  ImGui::Begin("File");
+  ImGui::InputText("name", state.path, sizeof state.path);
+  ImGui::TextDisabled(
+      "files are <name>.json, .ckpt, _height.png, .r32, .obj, _erosion.png, _shot.png");
+  const std::string base = state.path;
+  using K = cmd::Save::Kind;
+  if (ImGui::Button("save scene")) actions.command(cmd::Save{K::kScene, base + ".json"});
+  ImGui::SameLine();
+  if (ImGui::Button("save checkpoint")) actions.command(cmd::Save{K::kCheckpoint, base + ".ckpt"});
+  ImGui::SameLine();
+  if (ImGui::Button("resume checkpoint")) actions.command(cmd::LoadCheckpoint{base + ".ckpt"});
+  if (ImGui::Button("open scene")) {
+    try {
+      actions.command(cmd::Load{loadSceneFile(base + ".json")});
+    } catch (const std::exception& e) {
+      actions.log().push_back(e.what());
+    }
+  }
+  if (ImGui::Button("height PNG")) actions.command(cmd::Save{K::kHeightPng, base + "_height.png"});
+  ImGui::SameLine();
+  if (ImGui::Button("raw float")) actions.command(cmd::Save{K::kHeightRaw, base + ".r32"});
+  ImGui::SameLine();
+  if (ImGui::Button("mesh OBJ")) actions.command(cmd::Save{K::kMesh, base + ".obj"});
+  ImGui::SameLine();
+  if (ImGui::Button("erosion map"))
+    actions.command(cmd::Save{K::kErosionMap, base + "_erosion.png"});
+  if (ImGui::Button("screenshot")) {
+    try {
+      state.screenshot(base + "_shot.png");
+      actions.log().push_back("wrote " + base + "_shot.png");
+    } catch (const std::exception& e) {
+      actions.log().push_back(e.what());
+    }
+  }
+  ImGui::End();
+}
+
+void logPanel(const std::vector<std::string>& log, float windowHeight) {
+  ImGui::SetNextWindowPos({10, windowHeight - 130}, ImGuiCond_FirstUseEver);
+  ImGui::SetNextWindowSize({600, 120}, ImGuiCond_FirstUseEver);
+  ImGui::Begin("Log");
+  for (const std::string& line : log) ImGui::TextWrapped("%s", line.c_str());
+  ImGui::End();
+}
+
+}  // namespace scour
