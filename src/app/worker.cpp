@@ -184,72 +184,20 @@ void SimulationWorker::apply(SimCommand& c) {
       rebuild();
       error_.clear();
     } else if (auto* l = std::get_if<cmd::Load>(&c)) {
-      auto next = std::make_unique<World>(buildScene(l->spec).desc);  // a bad scene throws here
-      {
-        std::lock_guard<std::mutex> lock(mutex_);
-        spec_ = l->spec;
-      }
-      world_ = std::move(next);
-      worldEffects_ = l->spec.effects;
-      ++generation_;
-      error_.clear();
-      if (!kept_.empty()) notice_ = "a new scene: its snapshots start afresh";
-      kept_.clear();
+      load(l->spec);
     } else if (auto* fx = std::get_if<cmd::SetEffects>(&c)) {
       std::lock_guard<std::mutex> lock(mutex_);
       spec_.effects = fx->effects;
     } else if (auto* sv = std::get_if<cmd::Save>(&c)) {
-      using K = cmd::Save::Kind;
-      switch (sv->kind) {
-        case K::kScene: {
-          const nlohmann::json j = specToJson(spec());
-          writeAtomically(sv->path, [&](std::ostream& o) { o << j.dump(2) << "\n"; });
-          break;
-        }
-        case K::kCheckpoint: writeCheckpoint(sv->path, spec(), *world_); break;
-        case K::kHeightPng: writeHeightPng16(sv->path, world_->terrain()); break;
-        case K::kHeightRaw: writeHeightRaw(sv->path, world_->terrain()); break;
-        case K::kMesh: writeTerrainObj(sv->path, world_->terrain()); break;
-        case K::kErosionMap: writeErosionPng(sv->path, world_->terrain(), world_->heightChange()); break;
-      }
-      notice_ = "wrote " + sv->path;
+      save(*sv);
     } else if (auto* lc = std::get_if<cmd::LoadCheckpoint>(&c)) {
-      Scene scene;
-      auto next = std::make_unique<World>(resumeWorld(readCheckpoint(lc->path), scene));
-      {
-        std::lock_guard<std::mutex> lock(mutex_);
-        spec_ = scene.spec;
-      }
-      world_ = std::move(next);
-      worldEffects_ = scene.spec.effects;
-      ++generation_;
-      notice_ = "resumed " + lc->path + " at step " + std::to_string(world_->steps());
-      kept_.clear();  // a checkpoint may be of another scene
+      resume(lc->path);
     } else if (std::holds_alternative<cmd::TakeSnapshot>(c)) {
-      if (kept_.size() >= kMaxSnapshots)
-        throw std::invalid_argument("at most " + std::to_string(kMaxSnapshots) +
-                                    " snapshots: delete one first");
-      Kept k;
-      k.spec = spec();
-      k.spec.effects = worldEffects_;
-      k.spec.sources = world_->sources();
-      k.spec.sinks = world_->sinks();
-      std::ostringstream out;
-      world_->saveState(out);
-      k.state = out.str();
-      k.info = {nextSnapshotId_++, world_->time(), world_->steps(), world_->fluid().size()};
-      notice_ = "took snapshot " + std::to_string(k.info.id) +
-                " at t = " + std::to_string(k.info.time) + " s";
-      kept_.push_back(std::move(k));
+      takeSnapshot();
     } else if (auto* rs = std::get_if<cmd::RestoreSnapshot>(&c)) {
       restore(rs->id);
     } else if (auto* ds = std::get_if<cmd::DeleteSnapshot>(&c)) {
-      auto it = std::find_if(kept_.begin(), kept_.end(),
-                             [&](const Kept& k) { return k.info.id == ds->id; });
-      if (it == kept_.end())
-        throw std::invalid_argument("snapshot " + std::to_string(ds->id) + " does not exist");
-      kept_.erase(it);
-      notice_ = "deleted snapshot " + std::to_string(ds->id);
+      deleteSnapshot(ds->id);
     } else if (auto* f = std::get_if<cmd::SetStepsPerFrame>(&c)) {
       if (f->steps < 1 || f->steps > 1000) throw std::invalid_argument("steps per frame must lie in [1, 1000]");
       stepsPerFrame_ = f->steps;
@@ -257,6 +205,79 @@ void SimulationWorker::apply(SimCommand& c) {
   } catch (const std::exception& e) {
     error_ = e.what();
   }
+}
+
+// A new scene: a bad one throws before anything changes.
+void SimulationWorker::load(const SceneSpec& spec) {
+  auto next = std::make_unique<World>(buildScene(spec).desc);  // a bad scene throws here
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    spec_ = spec;
+  }
+  world_ = std::move(next);
+  worldEffects_ = spec.effects;
+  ++generation_;
+  error_.clear();
+  if (!kept_.empty()) notice_ = "a new scene: its snapshots start afresh";
+  kept_.clear();
+}
+
+void SimulationWorker::save(const cmd::Save& sv) {
+  using K = cmd::Save::Kind;
+  switch (sv.kind) {
+    case K::kScene: {
+      const nlohmann::json j = specToJson(spec());
+      writeAtomically(sv.path, [&](std::ostream& o) { o << j.dump(2) << "\n"; });
+      break;
+    }
+    case K::kCheckpoint: writeCheckpoint(sv.path, spec(), *world_); break;
+    case K::kHeightPng: writeHeightPng16(sv.path, world_->terrain()); break;
+    case K::kHeightRaw: writeHeightRaw(sv.path, world_->terrain()); break;
+    case K::kMesh: writeTerrainObj(sv.path, world_->terrain()); break;
+    case K::kErosionMap: writeErosionPng(sv.path, world_->terrain(), world_->heightChange()); break;
+  }
+  notice_ = "wrote " + sv.path;
+}
+
+void SimulationWorker::resume(const std::string& path) {
+  Scene scene;
+  auto next = std::make_unique<World>(resumeWorld(readCheckpoint(path), scene));
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    spec_ = scene.spec;
+  }
+  world_ = std::move(next);
+  worldEffects_ = scene.spec.effects;
+  ++generation_;
+  notice_ = "resumed " + path + " at step " + std::to_string(world_->steps());
+  kept_.clear();  // a checkpoint may be of another scene
+}
+
+void SimulationWorker::takeSnapshot() {
+  if (kept_.size() >= kMaxSnapshots)
+    throw std::invalid_argument("at most " + std::to_string(kMaxSnapshots) +
+                                " snapshots: delete one first");
+  Kept k;
+  k.spec = spec();
+  k.spec.effects = worldEffects_;
+  k.spec.sources = world_->sources();
+  k.spec.sinks = world_->sinks();
+  std::ostringstream out;
+  world_->saveState(out);
+  k.state = out.str();
+  k.info = {nextSnapshotId_++, world_->time(), world_->steps(), world_->fluid().size()};
+  notice_ = "took snapshot " + std::to_string(k.info.id) +
+            " at t = " + std::to_string(k.info.time) + " s";
+  kept_.push_back(std::move(k));
+}
+
+void SimulationWorker::deleteSnapshot(int id) {
+  auto it = std::find_if(kept_.begin(), kept_.end(),
+                         [&](const Kept& k) { return k.info.id == id; });
+  if (it == kept_.end())
+    throw std::invalid_argument("snapshot " + std::to_string(id) + " does not exist");
+  kept_.erase(it);
+  notice_ = "deleted snapshot " + std::to_string(id);
 }
 
 void SimulationWorker::publish(double stepsPerSecond) {

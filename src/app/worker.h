@@ -111,6 +111,11 @@ class SimulationWorker {
   void publish(double stepsPerSecond);
   void rebuild();
   void restore(int id);
+  void load(const SceneSpec& spec);
+  void save(const cmd::Save& save);
+  void resume(const std::string& checkpoint);
+  void takeSnapshot();
+  void deleteSnapshot(int id);
 
   /// A kept world state and the scene it belongs to (the scene's effects are those the World
   /// was built with, its sources and sinks those of the World when taken).
