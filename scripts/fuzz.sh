@@ -27,6 +27,9 @@ cmake --build build-fuzz --parallel "$(nproc)" >/dev/null
 seeds=build-fuzz/seeds
 rm -rf "$seeds" && mkdir -p "$seeds"/{scene_json,heightmap,checkpoint,replay} build-fuzz/artifacts
 find tests/data/bad -maxdepth 1 -type f -name "*.json" -exec cp {} "$seeds/scene_json/" \;
+for f in assets/scenes/*.json assets/scenes/stress/*.json; do  # the built-in scenes
+  cp "$f" "$seeds/scene_json/builtin-$(basename "$f")"
+done
 find tests/data/bad -maxdepth 1 -type f -name "*.ckpt" -exec cp {} "$seeds/checkpoint/" \;
 cp tests/fuzz/seeds/replay/* "$seeds/replay/"
 for f in tests/data/bad/*.png assets/*.png; do

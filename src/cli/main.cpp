@@ -7,6 +7,7 @@
 #include "app/app.h"
 #include "cli/commands.h"
 #include "cli/render_options.h"
+#include "scene/builtin_scenes.h"
 
 int main(int argc, char** argv) {
   using namespace scour;
@@ -44,7 +45,7 @@ int main(int argc, char** argv) {
   }
   try {
     if (presets->parsed()) {
-      for (const auto& p : presetList()) std::cout << p.name << "\t" << p.description << "\n";
+      for (const BuiltinScene& b : builtinScenes()) std::cout << b.name << "\t" << b.description << "\n";
       return kExitOk;
     }
     if (app.got_subcommand("run")) return run();

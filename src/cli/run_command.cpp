@@ -53,8 +53,7 @@ Scene loadScene(const std::string& name, double scale, long particles,
   try {
     if (file) {
       spec = loadSceneFile(name);
-      if (!(scale > 0) || !std::isfinite(scale)) throw InputError("--scale must be a positive number");
-      spec.params.spacing /= std::cbrt(scale);
+      applyScaling(spec, scale, particles);
     } else {
       spec = presetSpec(name, scale, particles);
     }

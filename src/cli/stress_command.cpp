@@ -21,18 +21,18 @@ struct StressOptions {
   std::string trace;
   std::vector<std::string> sets;
   long paper = 0;
-  double time = 1.0;
+  double time = 0;  ///< > 0: --time given
 };
 
-// A name with a '/' or ending in .json is a scene file, run for `time` simulated seconds and
-// reported under its file name.
+// A name with a '/' or ending in .json is a scene file, reported under its file name and run
+// as its "stress" section says; `time` > 0 (--time) sets the simulated seconds, which are
+// otherwise the section's or 1.
 StressScene stressSceneOrFile(const std::string& name, double time) {
   if (name.find('/') == std::string::npos && !name.ends_with(".json")) return stressScene(name);
-  StressScene s;
-  s.spec = loadSceneFile(name);
-  s.name = std::filesystem::path(name).stem().string();
-  s.description = s.spec.description.empty() ? name : s.spec.description;
-  s.duration = time;
+  StressScene s = stressSceneFrom(loadSceneFile(name), std::filesystem::path(name).stem().string());
+  if (s.description.empty()) s.description = name;
+  if (time > 0) s.duration = time;
+  if (!(s.duration > 0)) s.duration = 1.0;
   return s;
 }
 
@@ -103,7 +103,8 @@ Command addStressCommand(CLI::App& app) {
       "stress", "Hard scenes with every invariant checked every step; exits 3 if one fails");
   c->add_option("--scene", o->scenes,
                 "Run only this scene, or a scene file (.json) (repeatable; default: all)");
-  c->add_option("--time", o->time, "Simulated seconds for a scene file (default 1)")
+  c->add_option("--time", o->time,
+                "Simulated seconds for a scene file (default: its stress section's, else 1)")
       ->check(kPositive);
   c->add_option("--set", o->sets, "Override a parameter in every scene: key=value (repeatable)");
   c->add_flag("--list", o->list, "List the scenes, one per line");

@@ -1,5 +1,6 @@
 #pragma once
-// Data built into the binary: a heightmap named "builtin:…" in a scene is read from here.
+// Data built into the binary: a heightmap named "builtin:…" in a scene is read from here, and
+// the built-in scenes (builtin_scenes.h) are these files.
 
 #include <cstddef>
 #include <string>
@@ -16,5 +17,8 @@ struct Asset {
 const std::vector<Asset>& builtinAssets();
 /// The asset of that name, or nullptr.
 const Asset* findAsset(const std::string& name);
+/// The scene files of assets/scenes/, named by their path there ("canyon.json",
+/// "stress/cliffs.json"): the presets, then the stress scenes, each in file-name order.
+const std::vector<Asset>& builtinSceneFiles();
 
 }  // namespace scour

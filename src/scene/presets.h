@@ -5,7 +5,8 @@
 // spec's Δs, the heightfield). Because overrides (`--set`) edit the spec before it is built, a
 // new Δs refills the water at that spacing.
 //
-// Each preset is defined once here and shared by `scour run`, `scour bench` and the tests.
+// Each preset is a scene file of assets/scenes/, built into the binary (builtin_scenes.h) and
+// shared by the window, `scour run`, `scour bench` and the tests.
 
 #include <stdexcept>
 #include <string>
@@ -96,6 +97,37 @@ struct SedimentMark {
   double c = 0.0;
 };
 
+/// How `--scale` resizes a scene (a scene file's "scaling"; docs/scene-format.md). The scale
+/// multiplies the particle count, roughly:
+///   spacing  Δs / ∛scale, everything else as it is (the default)
+///   fixed    nothing changes (a lattice whose size is the experiment)
+///   column   a dam break: Δs = width / max(4, round(cells ∛scale)), a whole number of cells
+///            across the column, and the slab (terrain and water along z) slab_cells Δs deep
+///   pool     Δs as it is; the pool's (x, z) side, its terrain's too, holds `particles` × scale
+///            particles in `layers` layers (or the count `scour bench --particles` asks for)
+struct Scaling {
+  enum class Rule { kSpacing, kFixed, kColumn, kPool } rule = Rule::kSpacing;
+  double width = 0.1;        ///< column: the column's width [m]
+  int cells = 16;            ///< column: cells across it at scale 1
+  int slab_cells = 6;        ///< column: the slab's depth [Δs]
+  double particles = 1e5;    ///< pool: the count at scale 1
+  int layers = 16;           ///< pool: its depth [Δs]
+};
+
+/// A parameter multiplied by `factor` once the simulated time reaches `time`.
+struct ParamJump {
+  double time;
+  std::string key;
+  double factor;
+};
+
+/// How `scour stress` runs a scene (a scene file's "stress"): for how long, and the parameter
+/// jumps on the way. A duration of 0: the scene names none.
+struct StressPlan {
+  double duration = 0;  ///< simulated seconds
+  std::vector<ParamJump> jumps;
+};
+
 struct SceneSpec {
   std::string name, description;
   SimParams params;
@@ -110,6 +142,8 @@ struct SceneSpec {
   /// The view pictures are taken from (`scour run --frames`, `scour render`); none: an overview.
   bool has_camera = false;
   Eigen::Vector3d camera_eye = Eigen::Vector3d::Zero(), camera_target = Eigen::Vector3d::Zero();
+  Scaling scaling;
+  StressPlan stress;
 };
 
 /// A built scene: its spec and the engine's description made from it.
@@ -122,12 +156,16 @@ struct PresetInfo {
   const char* name;
   const char* description;
 };
+/// The presets (the built-in scenes but the stress ones), in file-name order.
 const std::vector<PresetInfo>& presetList();
 
-/// The spec of a preset. `scale` multiplies the particle count (roughly); `particles` > 0 asks
-/// for about that many where the preset supports it (the bench block). Throws
-/// std::invalid_argument for an unknown name, naming the valid ones.
+/// The spec of a built-in scene (a preset or a stress scene), scaled by its rule (applyScaling).
+/// Throws std::invalid_argument for an unknown name, naming the valid ones.
 SceneSpec presetSpec(const std::string& name, double scale = 1.0, long particles = 0);
+/// Resizes a scene by its scaling rule (Scaling): `scale` multiplies the particle count, roughly;
+/// `particles` > 0 asks for about that many where the rule can (pool). Throws
+/// std::invalid_argument for a scale that is not a positive number.
+void applyScaling(SceneSpec& s, double scale, long particles = 0);
 
 /// The terrain kinds, for messages and the GUI.
 const std::vector<std::string>& terrainKinds();
@@ -165,11 +203,6 @@ void checkFootprint(const SceneSpec& spec, const Heightfield* terrain = nullptr)
 /// coordinates so far from the origin that float positions could not tell Δs/100 apart.
 /// Throws SceneError.
 void checkGeometry(const SceneSpec& spec, const Heightfield& terrain);
-
-/// A dam break: a column of water a wide and 2a high against the tank's left wall (x = 0),
-/// flowing along +x over a flat floor `tank` long, in a slab six particles deep held by walls
-/// (Martin & Moyce's experiment is two-dimensional). Sets the spacing, terrain and water block.
-void damBreakTank(SceneSpec& s, double a, double spacing, double tank);
 
 /// presetSpec + buildScene.
 inline Scene makePreset(const std::string& name, double scale = 1.0, long particles = 0) {

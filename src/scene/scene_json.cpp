@@ -155,6 +155,62 @@ class Fields {
 
 constexpr double kBig = 1e6;  // metres: larger extents are surely a typo
 
+const std::vector<std::string>& scalingRules() {
+  static const std::vector<std::string> names = {"spacing", "fixed", "column", "pool"};
+  return names;
+}
+
+json scalingToJson(const Scaling& c) {
+  json j = {{"rule", scalingRules()[size_t(c.rule)]}};
+  if (c.rule == Scaling::Rule::kColumn)
+    j["width"] = c.width, j["cells"] = c.cells, j["slab_cells"] = c.slab_cells;
+  if (c.rule == Scaling::Rule::kPool) j["particles"] = c.particles, j["layers"] = c.layers;
+  return j;
+}
+
+Scaling scalingFromJson(const json& j, const std::string& file) {
+  Fields f(j, "scaling", file);
+  Scaling c;
+  const std::string rule = f.text("rule", scalingRules()[0], scalingRules());
+  c.rule = Scaling::Rule(std::find(scalingRules().begin(), scalingRules().end(), rule) -
+                         scalingRules().begin());
+  if (c.rule == Scaling::Rule::kColumn) {
+    c.width = f.number("width", c.width, 1e-6, kBig, true);
+    c.cells = int(f.integer("cells", c.cells, 4, 100000));
+    c.slab_cells = int(f.integer("slab_cells", c.slab_cells, 1, 100000));
+  }
+  if (c.rule == Scaling::Rule::kPool) {
+    c.particles = f.number("particles", c.particles, 8, 1e12, true);
+    c.layers = int(f.integer("layers", c.layers, 1, 100000));
+  }
+  f.finish();
+  return c;
+}
+
+StressPlan stressFromJson(const json& j, const std::string& file) {
+  Fields f(j, "stress", file);
+  StressPlan plan;
+  plan.duration = f.number("duration", 0, 1e-9, 1e9, true);
+  const json& jumps = f.array("jumps");
+  for (size_t k = 0; k < jumps.size(); ++k) {
+    Fields g(jumps[k], "stress.jumps[" + std::to_string(k) + "]", file);
+    ParamJump p;
+    p.time = g.number("time", 0, 0, 1e9, true);
+    if (!g.has("param"))
+      throw SceneError(file + ": " + g.at("param") + ": required field is missing");
+    p.key = g.text("param", "");
+    const ParamInfo* info = findParam(p.key);
+    if (!info || !info->dmember)
+      g.fail(g.at("param"), "the key of a real-valued parameter (docs/parameters.md)",
+             g.raw("param"));
+    p.factor = g.number("factor", 1, 0, 1e12, true);
+    g.finish();
+    plan.jumps.push_back(p);
+  }
+  f.finish();
+  return plan;
+}
+
 }  // namespace
 
 json paramsToJson(const SimParams& p) {
@@ -242,6 +298,13 @@ json specToJson(const SceneSpec& s) {
                     {"seed", r.seed}});
   j["rain"] = rain;
   if (s.has_camera) j["camera"] = {{"eye", vec(s.camera_eye)}, {"target", vec(s.camera_target)}};
+  j["scaling"] = scalingToJson(s.scaling);
+  if (s.stress.duration > 0) {
+    json jumps = json::array();
+    for (const ParamJump& p : s.stress.jumps)
+      jumps.push_back({{"time", p.time}, {"param", p.key}, {"factor", p.factor}});
+    j["stress"] = {{"duration", s.stress.duration}, {"jumps", jumps}};
+  }
   return j;
 }
 
@@ -468,6 +531,8 @@ SceneSpec specFromJson(const json& j, const std::string& file) {
     if ((s.camera_eye - s.camera_target).norm() == 0)
       throw SceneError(file + ": camera.target: must differ from camera.eye");
   }
+  if (top.has("scaling")) s.scaling = scalingFromJson(top.raw("scaling"), file);
+  if (top.has("stress")) s.stress = stressFromJson(top.raw("stress"), file);
   if (top.has("built")) top.raw("built");  // written by sceneToJson for people; not read back
   top.finish();
   // What the scene asks of the machine, before anything is allocated (buildScene checks again,

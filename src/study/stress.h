@@ -29,25 +29,21 @@
 
 namespace scour {
 
-/// A parameter multiplied by `factor` once the simulated time reaches `time`.
-struct ParamJump {
-  double time;
-  std::string key;
-  double factor;
-};
-
 struct StressScene {
   std::string name, description;
   SceneSpec spec;
   double duration = 1.0;  ///< simulated seconds
   long max_steps = 0;     ///< > 0: stop after this many steps, whichever comes first
-  std::vector<ParamJump> jumps;
+  std::vector<ParamJump> jumps;  ///< (scene/presets.h)
 };
 
 /// The scenes, in report order.
 const std::vector<std::string>& stressSceneNames();
-/// Throws std::invalid_argument naming the valid scenes for an unknown name.
+/// The stress scene of assets/scenes/stress/<name>.json. Throws std::invalid_argument naming
+/// the valid scenes for an unknown name.
 StressScene stressScene(const std::string& name);
+/// A scene run as its "stress" section says (its duration and parameter jumps), under `name`.
+StressScene stressSceneFrom(const SceneSpec& spec, const std::string& name);
 /// The paper's canyon, lake and waterfall at full size, `steps` steps each, as stress scenes
 /// (`scour stress --paper`; minutes each, not in CI).
 std::vector<StressScene> paperStressScenes(long steps);

@@ -27,7 +27,7 @@ expect "outside the valid range" run dambreak --headless --steps 5 --set fluid.s
 expect "--particles" bench block --particles -3
 expect "--scale" run dambreak --headless --steps 5 --scale 0 --out "$tmp/j"
 expect "cannot create directory" run dambreak --headless --steps 5 --out /proc/nope/x
-expect "unknown stress scene 'nope' (valid: waterfall-drop" stress --scene nope --out "$tmp/k"
+expect "unknown stress scene 'nope' (valid: cfl-limit, cliffs" stress --scene nope --out "$tmp/k"
 expect "'time.cfl': 0.9 is outside the valid range [0.01, 0.4]" stress --scene cliffs --set time.cfl=0.9 --out "$tmp/l"
 expect "--threads" study --threads 0 --out "$tmp/m"
 # Every number that scales an allocation goes through the one estimate: --set, --scale, a preset.

@@ -7,6 +7,9 @@
 #include <set>
 
 #include "scene/assets.h"
+#include "scene/builtin_scenes.h"
+#include "scene/scene_json.h"
+#include "study/stress.h"
 #include "scene/presets.h"
 
 using namespace scour;
@@ -91,4 +94,67 @@ TEST_CASE("terrain generators are deterministic and shaped as documented", "[pre
   CHECK(a.maxHeight() < 0.2);  // |fBm| ≤ amplitude · (1 + ½ + ¼ + …) < 2 · amplitude
   t.noise.seed = 5;
   CHECK(buildTerrain(t).heights() != a.heights());
+}
+
+TEST_CASE("every built-in scene is its file in assets/scenes/, read by the scene reader",
+          "[presets][builtin]") {
+  const std::string dir = std::string(SCOUR_SOURCE_DIR) + "/assets/scenes/";
+  size_t presets = 0, stress = 0;
+  for (const BuiltinScene& b : builtinScenes()) {
+    INFO(b.name);
+    b.stress ? ++stress : ++presets;
+    const std::string stem = b.stress ? b.name.substr(7) : b.name;
+    const std::string path = dir + (b.stress ? "stress/" : "") + stem + ".json";
+    // The bytes built in are the file's, and the file read from disk is the same scene.
+    std::ifstream in(path, std::ios::binary);
+    const std::string file((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    const Asset* a = nullptr;
+    for (const Asset& f : builtinSceneFiles())
+      if (b.file == std::string("builtin:scenes/") + f.name) a = &f;
+    REQUIRE(a != nullptr);
+    CHECK(std::string(reinterpret_cast<const char*>(a->data), a->size) == file);
+    CHECK(specToJson(loadSceneFile(path)) == specToJson(b.spec));
+    CHECK(specToJson(presetSpec(b.name)) == specToJson(b.spec));  // scale 1 changes nothing
+    CHECK(!b.description.empty());
+    CHECK(b.stress == (b.spec.stress.duration > 0));  // the stress scenes say how long they run
+  }
+  CHECK(presets == presetList().size());
+  CHECK(presets == 11);
+  CHECK(stress == stressSceneNames().size());
+  CHECK(stress == 20);
+  REQUIRE_THROWS_WITH(presetSpec("nosuch"), Catch::StartsWith("unknown scene 'nosuch' (built-in scenes: block, canyon,") &&
+                                                Catch::Contains("stress-cliffs"));
+}
+
+TEST_CASE("each scene's scaling rule sets what --scale does", "[presets][builtin]") {
+  // spacing: Δs / ∛scale, nothing else.
+  const SceneSpec river = presetSpec("default"), small = presetSpec("default", 0.125);
+  CHECK(small.params.spacing == Approx(2 * river.params.spacing));
+  CHECK(specToJson(small)["terrain"] == specToJson(river)["terrain"]);
+  // fixed: the lattice is the experiment.
+  CHECK(specToJson(presetSpec("settling", 0.1)) == specToJson(presetSpec("settling")));
+  // column: a whole number of cells across Martin & Moyce's column (at least 4), and a slab
+  // six cells deep.
+  for (double scale : {1.0, 0.3, 0.01, 1e-6}) {
+    INFO("scale " << scale);
+    const SceneSpec d = presetSpec("dambreak", scale);
+    const double a = d.scaling.width, cells = a / d.params.spacing;
+    CHECK(cells == Approx(std::round(cells)).epsilon(1e-12));
+    CHECK(std::round(cells) == std::max(4.0, std::round(16 * std::cbrt(scale))));
+    CHECK(d.terrain.length_z == Approx(6 * d.params.spacing));
+    CHECK(d.blocks.at(0).max.z() == Approx(6 * d.params.spacing));
+    CHECK(d.blocks.at(0).max.x() == a);
+  }
+  // pool: Δs as it is, the side to hold the count asked for in 16 layers.
+  for (long n : {0L, 20000L, 500000L}) {
+    INFO(n << " particles");
+    const Scene b = buildScene(presetSpec("block", 1.0, n));
+    const double want = n > 0 ? double(n) : 136000.0;
+    CHECK(b.spec.params.spacing == 0.05);
+    CHECK(double(b.desc.particles.size()) == Approx(want).epsilon(0.05));
+    CHECK(b.spec.terrain.length_x == b.spec.blocks.at(0).max.x());
+  }
+  CHECK(double(buildScene(presetSpec("block", 0.25)).desc.particles.size()) ==
+        Approx(0.25 * 136000).epsilon(0.05));
+  REQUIRE_THROWS_WITH(presetSpec("default", 0.0), "--scale must be a positive number");
 }

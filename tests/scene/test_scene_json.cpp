@@ -78,5 +78,22 @@ TEST_CASE("the reader names the field, what it expected and what it found", "[sc
              Catch::Contains("sources[0].rate: 10000 m³/s is") && Catch::Contains("more than the 2e+05 one step may place"));
   CHECK_THAT(error([](json& j) { j["sources"][0]["direction"] = json::array({0, 0, 0}); }),
              Catch::Contains("sources[0].direction: must not be the zero vector"));
+  // How --scale resizes the scene, and how `scour stress` runs it.
+  CHECK_THAT(error([](json& j) { j["scaling"] = {{"rule", "double"}}; }),
+             Catch::Contains("scaling.rule: expected one of spacing, fixed, column, pool, found \"double\""));
+  CHECK(error([](json& j) { j["scaling"] = {{"rule", "column"}}; }) ==
+        "x.json: scaling.width: required field is missing");
+  CHECK_THAT(error([](json& j) { j["scaling"] = {{"rule", "column"}, {"width", 0.1}, {"cells", 2}}; }),
+             Catch::Contains("scaling.cells: expected a whole number in [4, 100000], found 2"));
+  CHECK_THAT(error([](json& j) { j["scaling"] = {{"rule", "spacing"}, {"layers", 3}}; }),
+             Catch::Contains("scaling.layers: unknown key"));
+  CHECK(error([](json& j) { j["stress"] = {{"jumps", json::array()}}; }) ==
+        "x.json: stress.duration: required field is missing");
+  CHECK(error([](json& j) {
+          j["stress"] = {{"duration", 1}, {"jumps", {{{"time", 0.3}, {"param", "erosion.k_esp"}, {"factor", 2}}}}};
+        }) == "x.json: stress.jumps[0].param: expected the key of a real-valued parameter "
+              "(docs/parameters.md), found \"erosion.k_esp\"");
+  CHECK(error([](json& j) { j["stress"] = {{"duration", 1}, {"jumps", {{{"time", 0.3}, {"factor", 2}}}}}; }) ==
+        "x.json: stress.jumps[0].param: required field is missing");
   CHECK(error([](json&) {}) == "(accepted)");
 }
