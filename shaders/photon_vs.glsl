@@ -4,11 +4,11 @@
 // flat surface puts exactly one photon on every texel and focusing waves put more.
 uniform sampler2D waterPosition, waterNormal, receiver;
 uniform ivec2 mapSize;
-uniform mat4 lightViewProj;
+uniform mat4 lightClipFromWorld;
 uniform vec3 sunDir;  // towards the sun
 
 vec2 project(vec3 p) {
-  vec4 l = lightViewProj * vec4(p, 1.0);
+  vec4 l = lightClipFromWorld * vec4(p, 1.0);
   return l.xy / l.w * 0.5 + 0.5;
 }
 
@@ -30,5 +30,5 @@ void main() {
     d = distance(p.xyz, r);
   }
   q = p.xyz + d * t;
-  gl_Position = lightViewProj * vec4(q, 1.0);
+  gl_Position = lightClipFromWorld * vec4(q, 1.0);
 }

@@ -13,7 +13,7 @@ uniform vec3 sunDir;           // towards the sun
 uniform bool caustics;
 uniform sampler2D causticMap;  // photons per texel from the water, 1 = flat water
 uniform sampler2D waterFromLight;  // xyz water surface seen from the sun, w = 1 where water
-uniform mat4 lightViewProj;
+uniform mat4 lightClipFromWorld;
 uniform float causticStrength;
 
 out vec4 colour;
@@ -39,7 +39,7 @@ void main() {
   }
   float sun = max(dot(n, sunDir), 0.0);
   if (caustics) {
-    vec4 l = lightViewProj * vec4(worldPos, 1.0);
+    vec4 l = lightClipFromWorld * vec4(worldPos, 1.0);
     vec2 uv = l.xy / l.w * 0.5 + 0.5;
     vec4 water = texture(waterFromLight, uv);
     if (water.w > 0.5 && water.y > worldPos.y)  // under water: the sun arrives as caustics

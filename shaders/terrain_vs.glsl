@@ -4,7 +4,7 @@ uniform sampler2D heights;  // R32F, nx × nz
 uniform ivec2 size;         // nx, nz
 uniform vec2 origin;        // x0, z0
 uniform vec2 spacing;       // dx, dz
-uniform mat4 viewProj;
+uniform mat4 clipFromWorld;
 
 out vec3 worldPos;
 out vec3 worldNormal;
@@ -25,5 +25,5 @@ void main() {
                (spacing.y * float(min(v.y + 1, size.y - 1) - max(v.y - 1, 0)));
   worldNormal = normalize(vec3(-dhdx, 1.0, -dhdz));
   gridCoord = vec2(v);
-  gl_Position = viewProj * vec4(worldPos, 1.0);
+  gl_Position = clipFromWorld * vec4(worldPos, 1.0);
 }

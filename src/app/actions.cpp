@@ -62,9 +62,9 @@ void Actions::placeSource(const Eigen::Vector3f& hit) {
   s.center = overTerrain(frame, hit.cast<double>(), s.radius, 6 * frame.spacing);
   s.direction = {0, -1, 0};
   s.rate = 50 * std::pow(double(frame.spacing), 2);
-  perform({{cmd::AddSource{s}}, {cmd::RemoveSource{snapshot().sources.size()}}, "place a source",
-           ""},
-          false);
+  perform(
+      {{cmd::AddSource{s}}, {cmd::RemoveSource{snapshot().sources.size()}}, "place a source", ""},
+      false);
   lastSource_ = s.center, lastRadius_ = s.radius;
   log_.push_back("source placed at " + point(s.center));
 }
@@ -128,7 +128,9 @@ void Actions::setParameter(const std::string& key, const std::string& value, boo
           extend);
 }
 
-void Actions::perform(Edit e, bool extend) { post(history_.perform(std::move(e), extend)); }
+void Actions::perform(Edit e, bool extend) {
+  post(history_.perform(std::move(e), extend));
+}
 
 void Actions::undo() {
   if (std::optional<Edit> e = history_.undo()) post(e->undo), log_.push_back("undo: " + e->what);

@@ -1,11 +1,14 @@
 #include "app/app.h"
 
+// GLEW's header before GLFW's (which would include the system GL header).
+// clang-format off
+#include "render/gl.h"
+#include <GLFW/glfw3.h>
+// clang-format on
+
 #include <backends/imgui_impl_glfw.h>
 #include <backends/imgui_impl_opengl3.h>
 #include <imgui.h>
-
-#include "render/gl.h"  // before GLFW
-#include <GLFW/glfw3.h>
 
 #include <Eigen/Geometry>
 #include <algorithm>
@@ -59,9 +62,12 @@ class Mouse {
     if (heldByReplay || cancelled_) {
       // A scripted drag holds the (virtual) mouse; after a cancelled drag it rests till released.
     } else if (actions.drag().index >= 0) {
-      if (ImGui::IsKeyPressed(ImGuiKey_Escape)) actions.cancelDrag(), cancelled_ = true;
-      else if (!left) actions.release();
-      else if (mx != lastX_ || my != lastY_) actions.dragTo(mx, my);
+      if (ImGui::IsKeyPressed(ImGuiKey_Escape))
+        actions.cancelDrag(), cancelled_ = true;
+      else if (!left)
+        actions.release();
+      else if (mx != lastX_ || my != lastY_)
+        actions.dragTo(mx, my);
     } else if (!ImGui::GetIO().WantCaptureMouse) {
       hovered = actions.sourceUnder(mx, my);
       if (ImGui::IsMouseClicked(ImGuiMouseButton_Left) && actions.press(mx, my)) {
@@ -141,8 +147,10 @@ void drawPanels(const Snapshot& snap, const SceneSpec& scene, Actions& actions, 
 }  // namespace
 
 int runApp(const SceneSpec& spec, const AppOptions& o) {
-  std::vector<ReplayEvent> events = o.replay.empty() ? std::vector<ReplayEvent>{} : readReplay(o.replay);
-  auto context = createGlContext(GlBackend::kWindow, o.width, o.height, true, "Scour: " + spec.name);
+  std::vector<ReplayEvent> events =
+      o.replay.empty() ? std::vector<ReplayEvent>{} : readReplay(o.replay);
+  auto context =
+      createGlContext(GlBackend::kWindow, o.width, o.height, true, "Scour: " + spec.name);
   GLFWwindow* window = context->window();
   glfwSwapInterval(0);
   std::optional<ImGuiSession> imgui(std::in_place, window);
@@ -192,7 +200,8 @@ int runApp(const SceneSpec& spec, const AppOptions& o) {
   imgui.reset();
   worker.poll();
   const Snapshot& last = worker.latest();
-  if (o.stats) *o.stats = {frames, last.frame.step - std::max(firstStep, 0L), glfwGetTime() - opened};
+  if (o.stats)
+    *o.stats = {frames, last.frame.step - std::max(firstStep, 0L), glfwGetTime() - opened};
   std::cout << exitReport(last, frames, actions, errors);
   return errors == 0 ? 0 : 1;
 }

@@ -23,8 +23,8 @@ std::string exitReport(const Snapshot& last, long frames, const Actions& actions
   out << "closed after " << frames << " frames; simulated " << last.frame.time << " s, "
       << last.frame.step << " steps; " << last.sources.size() << " sources at [" << where.str()
       << "]; " << last.sinks.size() << " sinks, removed " << last.removedBySinks << "; "
-      << last.snapshots.size() << " snapshots; erosion.k_eps " << last.params.k_eps
-      << "; emitted " << last.emitted << "; painted " << last.painted
+      << last.snapshots.size() << " snapshots; erosion.k_eps " << last.params.k_eps << "; emitted "
+      << last.emitted << "; painted " << last.painted
       << "; particles within 0.25 m of the last placed or moved source " << near
       << ", around its disk " << atDisk << "; GL errors: " << glErrors << "\n";
   for (const std::string& line : actions.log()) out << "log: " << line << "\n";

@@ -13,7 +13,9 @@ namespace scour {
 
 namespace {
 
-ImVec2 imvec(const Eigen::Vector2f& p) { return {p.x(), p.y()}; }
+ImVec2 imvec(const Eigen::Vector2f& p) {
+  return {p.x(), p.y()};
+}
 
 void pushBounded(std::deque<float>& q, float v) {
   q.push_back(v);
@@ -87,7 +89,8 @@ void parameterRow(const Snapshot& snap, const ParamInfo& p, Actions& actions) {
     const bool logScale = p.min > 0 && p.max / p.min > 100;
     if (ImGui::SliderScalar(label.c_str(), ImGuiDataType_Double, &v, &p.min, &p.max, "%.4g",
                             logScale ? ImGuiSliderFlags_Logarithmic : 0))
-      actions.setParameter(key, formatNumber(v), ImGui::IsItemActive() && !ImGui::IsItemActivated());
+      actions.setParameter(key, formatNumber(v),
+                           ImGui::IsItemActive() && !ImGui::IsItemActivated());
   }
   if (ImGui::IsItemHovered())
     ImGui::SetTooltip("%s (%s): %s  range [%g, %g]", key.c_str(), p.symbol, p.help, p.min, p.max);
@@ -106,8 +109,8 @@ void sourceRow(const Snapshot& snap, size_t i, Actions& actions) {
     s.direction = Eigen::Vector3d(dir[0], dir[1], dir[2]);
     changed = true;
   }
-  changed |= ImGui::SliderFloat("rate [L/s]", &rate, 0.01f, 50.0f, "%.3g",
-                                ImGuiSliderFlags_Logarithmic);
+  changed |=
+      ImGui::SliderFloat("rate [L/s]", &rate, 0.01f, 50.0f, "%.3g", ImGuiSliderFlags_Logarithmic);
   changed |= ImGui::SliderFloat("radius [m]", &radius, spacing, 50 * spacing, "%.3g");
   if (changed) {
     s.rate = rate * 1e-3, s.radius = radius;
@@ -172,7 +175,9 @@ void TimePlots::addSteps(const Snapshot& snap) {
   lastStep_ = step;
 }
 
-void TimePlots::addRender(double seconds) { pushBounded(render, float(seconds * 1e3)); }
+void TimePlots::addRender(double seconds) {
+  pushBounded(render, float(seconds * 1e3));
+}
 
 void drawMarkers(const Actions& actions, int hovered) {
   ImDrawList* draw = ImGui::GetBackgroundDrawList();
@@ -241,8 +246,8 @@ void parametersPanel(const Snapshot& snap, Actions& actions) {
     const std::string key = p.key, g = key.substr(0, key.find('.'));
     if (g != group) {
       group = g;
-      open = ImGui::CollapsingHeader(g.c_str(),
-                                     g == "erosion" ? ImGuiTreeNodeFlags_DefaultOpen : 0);
+      open =
+          ImGui::CollapsingHeader(g.c_str(), g == "erosion" ? ImGuiTreeNodeFlags_DefaultOpen : 0);
     }
     if (open) parameterRow(snap, p, actions);
   }

@@ -39,13 +39,20 @@ void ReplayPlayer::playEvent(const std::vector<std::string>& w, long frame, Acti
 }
 
 void ReplayPlayer::press(const std::string& button, Actions& actions) {
-  if (button == "undo") actions.undo();
-  else if (button == "redo") actions.redo();
-  else if (button == "snapshot") actions.command(cmd::TakeSnapshot{});
-  else if (button == "play") actions.command(cmd::Resume{});
-  else if (button == "pause") actions.command(cmd::Pause{});
-  else if (button == "step") actions.command(cmd::StepOnce{});
-  else if (button == "reset") actions.command(cmd::Reset{});
+  if (button == "undo")
+    actions.undo();
+  else if (button == "redo")
+    actions.redo();
+  else if (button == "snapshot")
+    actions.command(cmd::TakeSnapshot{});
+  else if (button == "play")
+    actions.command(cmd::Resume{});
+  else if (button == "pause")
+    actions.command(cmd::Pause{});
+  else if (button == "step")
+    actions.command(cmd::StepOnce{});
+  else if (button == "reset")
+    actions.command(cmd::Reset{});
 }
 
 void ReplayPlayer::moveDrag(long frame, Actions& actions) {
@@ -56,7 +63,8 @@ void ReplayPlayer::moveDrag(long frame, Actions& actions) {
     drag_.reset();
   } else if (k > 0) {
     const double t = std::min(1.0, double(k) / kDragSteps);
-    actions.dragTo(drag_->x0 + t * (drag_->x1 - drag_->x0), drag_->y0 + t * (drag_->y1 - drag_->y0));
+    actions.dragTo(drag_->x0 + t * (drag_->x1 - drag_->x0),
+                   drag_->y0 + t * (drag_->y1 - drag_->y0));
     if (k >= kDragSteps) actions.release(), drag_.reset();
   }
 }

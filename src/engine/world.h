@@ -149,12 +149,12 @@ class World {
   /// Δs/2 above the terrain with water at rest (the brush). Returns how many particles it added.
   long addWater(const Eigen::Vector3d& centre, double radius);
 
-  const SimParams& params() const { return p_; }
-  const Heightfield& terrain() const { return hf_; }
-  const Fluid& fluid() const { return f_; }
-  const BoundaryParticles& boundary() const { return b_; }
-  const NeighborLists& neighbors() const { return nbrs_; }
-  const Domain& domain() const { return dom_; }
+  const SimParams& params() const { return params_; }
+  const Heightfield& terrain() const { return terrain_; }
+  const Fluid& fluid() const { return fluid_; }
+  const BoundaryParticles& boundary() const { return boundary_; }
+  const NeighborLists& neighbors() const { return fluidNeighbors_; }
+  const Domain& domain() const { return domain_; }
   double time() const { return time_; }
   long steps() const { return step_; }
   double lastDt() const { return dt_; }
@@ -162,7 +162,7 @@ class World {
   /// Seconds spent in each pass, and how often it ran, since construction.
   const std::array<double, size_t(Pass::kCount)>& passSeconds() const { return passSeconds_; }
   const std::array<long, size_t(Pass::kCount)>& passCalls() const { return passCalls_; }
-  const InvariantReport& invariants() const { return inv_; }
+  const InvariantReport& invariants() const { return invariants_; }
   long removedBySinks() const { return removedSinks_; }
   long removedByOutflow() const { return removedOutflow_; }
   long emitted() const { return emittedTotal_; }
@@ -184,13 +184,13 @@ class World {
   SoilBudget soilBudget() const;
   /// Height change of every vertex since the start [m].
   std::vector<double> heightChange() const;
-  const Heightfield& initialTerrain() const { return hf0_; }
+  const Heightfield& initialTerrain() const { return initialTerrain_; }
   /// What the naive advection (sediment.advection = naive_gradient) made or destroyed since the
   /// start, and the extreme C before the clamp (from the initial range on). With the conservative
   /// forms the volumes stay 0 and the C range is the initial one.
   const SedimentDefects& sedimentDefects() const { return defects_; }
   /// Sediment concentration C of particle i.
-  double concentration(size_t i) const { return f_.sed[i] / sk_.volume; }
+  double concentration(size_t i) const { return fluid_.sed[i] / sediment_.volume; }
 
   /// FNV-1a over particle count, positions, velocities, heights and time.
   uint64_t stateHash() const;
@@ -208,7 +208,7 @@ class World {
   void timed(Pass pass, F&& f);
   double chooseDt() const;
   void searchNeighbors();
-  /// The fluid–fluid lists (grid or kd-tree, as p_.neighbor_search says).
+  /// The fluid–fluid lists (grid or kd-tree, as params_.neighbor_search says).
   void buildFluidLists();
   /// The fluid–boundary lists, after buildFluidLists.
   void buildBoundaryLists();
@@ -224,7 +224,7 @@ class World {
   static constexpr double kEmitClearance = 0.8;
   /// Distance from a closed wall within which no particle is placed: Δs/2 (where a lattice's
   /// first layer sits), or the contact distance if larger [m].
-  double wallMargin() const { return p_.spacing * std::max(0.5, p_.contact_over_spacing); }
+  double wallMargin() const { return params_.spacing * std::max(0.5, params_.contact_over_spacing); }
   /// The part of a rain's rectangle over the terrain [m²].
   double rainArea(const Rain& r) const;
   /// Sets the simulation box: the terrain's rectangle and height range, grown on every side by
@@ -239,22 +239,22 @@ class World {
   bool place(const Vec3f& pos, const Vec3f& vel, double clearance = 0.5);
   void checkInvariants();
   void sedimentWork();
-  bool needsBoundary() const { return fx_.no_slip || fx_.erosion || fx_.deposition; }
+  bool needsBoundary() const { return effects_.no_slip || effects_.erosion || effects_.deposition; }
 
-  SimParams p_;
-  SphConstants k_;
-  SedimentConstants sk_;
-  Heightfield hf_, hf0_;
-  WallSurface wall_;  // what the walls see of hf_
+  SimParams params_;
+  SphConstants sph_;
+  SedimentConstants sediment_;
+  Heightfield terrain_, initialTerrain_;
+  WallSurface wall_;  // what the walls see of terrain_
   std::vector<double> vertexArea_;
   double terrainReference_ = 0;
-  TerrainAccumulator acc_;
+  TerrainAccumulator accumulator_;
   SedimentWorkspace sedimentWork_;
   double removedSediment_ = 0, initialSoil_ = 0;
   SedimentDefects defects_;
-  Domain dom_;
-  Effects fx_;
-  Fluid f_;
+  Domain domain_;
+  Effects effects_;
+  Fluid fluid_;
   std::vector<Vec3f> vhat_;
   std::vector<Emitter> emitters_;
   std::vector<Sink> sinks_;
@@ -263,10 +263,10 @@ class World {
   /// kd-tree mode: grid_ is built on demand for place() and the Z-order, not by the search.
   bool gridStale_ = false;
   KdTree fluidTree_, boundaryTree_;
-  NeighborLists nbrs_, bnbrs_;
+  NeighborLists fluidNeighbors_, boundaryNeighbors_;
   BoundarySampler sampler_;
-  BoundaryParticles b_;
-  std::vector<uint32_t> bstart_, bsorted_;
+  BoundaryParticles boundary_;
+  std::vector<uint32_t> boundaryStart_, boundarySorted_;
   double time_ = 0, dt_ = 0;
   long step_ = 0;
   uint32_t nextId_ = 0;
@@ -276,7 +276,7 @@ class World {
   double densityRate_ = 0;
   /// m (½|v|² + g y) of particle i [J].
   double particleEnergy(size_t i) const;
-  InvariantReport inv_;
+  InvariantReport invariants_;
   std::array<double, size_t(Pass::kCount)> passSeconds_{};
   std::array<long, size_t(Pass::kCount)> passCalls_{};
 };

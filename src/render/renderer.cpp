@@ -223,12 +223,12 @@ void Renderer::uploadTerrain(const Frame& f) {
   for (float c : f.change) changeMax_ = std::max(changeMax_, std::abs(c));
 }
 
-void Renderer::drawTerrain(const Program& p, const Eigen::Matrix4f& viewProj) const {
+void Renderer::drawTerrain(const Program& p, const Eigen::Matrix4f& clipFromWorld) const {
   p.use();
   glBindTextureUnit(0, heights_);
   glProgramUniform1i(p.id(), p.location("heights"), 0);
   glProgramUniform2i(p.id(), p.location("size"), terrainNx_, terrainNz_);
-  setMatrix(p, "viewProj", viewProj);
+  setMatrix(p, "clipFromWorld", clipFromWorld);
   glBindVertexArray(emptyVao_);
   glDrawArrays(GL_TRIANGLES, 0, 6 * (terrainNx_ - 1) * (terrainNz_ - 1));
 }
@@ -240,7 +240,7 @@ void Renderer::drawWater() const {
   glDrawArraysIndirect(GL_TRIANGLES, nullptr);
 }
 
-void Renderer::lightPass(const Frame& f, const RenderSettings& s, const Eigen::Matrix4f& lightViewProj) {
+void Renderer::lightPass(const Frame& f, const RenderSettings& s, const Eigen::Matrix4f& lightClipFromWorld) {
   makeLightTargets(s.caustic_map);
   glViewport(0, 0, lightSize_, lightSize_);
   glEnable(GL_DEPTH_TEST);
@@ -252,7 +252,7 @@ void Renderer::lightPass(const Frame& f, const RenderSettings& s, const Eigen::M
   glBindFramebuffer(GL_FRAMEBUFFER, receiverFbo_);
   glProgramUniform2f(lightTerrain_.id(), lightTerrain_.location("origin"), float(f.x0), float(f.z0));
   glProgramUniform2f(lightTerrain_.id(), lightTerrain_.location("spacing"), float(f.dx), float(f.dz));
-  drawTerrain(lightTerrain_, lightViewProj);
+  drawTerrain(lightTerrain_, lightClipFromWorld);
   // The water surface seen from the sun: position (w = 1 where water) and normal.
   const float none[4] = {0, 0, 0, 0};
   glClearNamedFramebufferfv(waterLightFbo_, GL_COLOR, 0, none);
@@ -260,7 +260,7 @@ void Renderer::lightPass(const Frame& f, const RenderSettings& s, const Eigen::M
   glClearNamedFramebufferfv(waterLightFbo_, GL_DEPTH, 0, &one);
   glBindFramebuffer(GL_FRAMEBUFFER, waterLightFbo_);
   lightWater_.use();
-  setMatrix(lightWater_, "viewProj", lightViewProj);
+  setMatrix(lightWater_, "clipFromWorld", lightClipFromWorld);
   drawWater();
   // Photons: one per texel of that map, refracted and splatted where they land.
   glClearNamedFramebufferfv(causticFbo_, GL_COLOR, 0, none);
@@ -277,7 +277,7 @@ void Renderer::lightPass(const Frame& f, const RenderSettings& s, const Eigen::M
   glProgramUniform1i(photon_.id(), photon_.location("waterNormal"), 1);
   glProgramUniform1i(photon_.id(), photon_.location("receiver"), 2);
   glProgramUniform2i(photon_.id(), photon_.location("mapSize"), lightSize_, lightSize_);
-  setMatrix(photon_, "lightViewProj", lightViewProj);
+  setMatrix(photon_, "lightClipFromWorld", lightClipFromWorld);
   const Eigen::Vector3f sun = s.sun.normalized();
   glProgramUniform3f(photon_.id(), photon_.location("sunDir"), sun.x(), sun.y(), sun.z());
   glBindVertexArray(emptyVao_);
@@ -301,13 +301,13 @@ void Renderer::render(const Frame& f, const Camera& c, const RenderSettings& s) 
   const float radius = 0.5f * (hi - lo).norm() + 1e-3f;
   const float dist = (c.eye - centre).norm();
   const float near = std::max(1e-3f * radius, dist - radius), far = dist + radius;
-  const Eigen::Matrix4f viewProj = c.projection(float(width_) / float(height_), near, far) * c.view();
+  const Eigen::Matrix4f clipFromWorld = c.projection(float(width_) / float(height_), near, far) * c.view();
   const Eigen::Vector3f sun = s.sun.normalized();
   const bool caustics = water && s.caustics;
   if (caustics) {
     const Eigen::Vector3f up = std::abs(sun.y()) > 0.99f ? Eigen::Vector3f(0, 0, 1) : Eigen::Vector3f(0, 1, 0);
-    lightViewProj_ = ortho(-radius, radius, -radius, radius, 0.0f, 4 * radius) * lookAt(centre + 2 * radius * sun, centre, up);
-    lightPass(f, s, lightViewProj_);
+    lightClipFromWorld_ = ortho(-radius, radius, -radius, radius, 0.0f, 4 * radius) * lookAt(centre + 2 * radius * sun, centre, up);
+    lightPass(f, s, lightClipFromWorld_);
   }
   // Background: the terrain alone.
   glViewport(0, 0, width_, height_);
@@ -330,17 +330,17 @@ void Renderer::render(const Frame& f, const Camera& c, const RenderSettings& s) 
   glProgramUniform1i(tp, terrain_.location("change"), 1);
   glProgramUniform1i(tp, terrain_.location("causticMap"), 2);
   glProgramUniform1i(tp, terrain_.location("waterFromLight"), 3);
-  setMatrix(terrain_, "lightViewProj", lightViewProj_);
+  setMatrix(terrain_, "lightClipFromWorld", lightClipFromWorld_);
   glBindTextureUnit(1, change_);
   if (caustics) glBindTextureUnit(2, caustic_), glBindTextureUnit(3, waterPos_);
-  drawTerrain(terrain_, viewProj);
+  drawTerrain(terrain_, clipFromWorld);
   // Final: the background, then the water over it, then the particles.
   glBlitNamedFramebuffer(backFbo_, finalFbo_, 0, 0, width_, height_, 0, 0, width_, height_,
                          GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT, GL_NEAREST);
   glBindFramebuffer(GL_FRAMEBUFFER, finalFbo_);
   if (water) {
     const GLuint wp = water_.id();
-    setMatrix(water_, "viewProj", viewProj);
+    setMatrix(water_, "clipFromWorld", clipFromWorld);
     glProgramUniform3f(wp, water_.location("eye"), c.eye.x(), c.eye.y(), c.eye.z());
     glProgramUniform3f(wp, water_.location("sunDir"), sun.x(), sun.y(), sun.z());
     glProgramUniform1i(wp, water_.location("reflections"), s.reflections ? 1 : 0);
@@ -375,7 +375,7 @@ void Renderer::render(const Frame& f, const Camera& c, const RenderSettings& s) 
     }
     glNamedBufferSubData(particleBuffer_, 0, GLsizeiptr(packed.size() * sizeof(float)), packed.data());
     glVertexArrayVertexBuffer(particleVao_, 0, particleBuffer_, 0, 16);
-    setMatrix(particles_, "viewProj", viewProj);
+    setMatrix(particles_, "clipFromWorld", clipFromWorld);
     const float pixels = float(height_) * f.spacing / (2 * std::tan(0.5f * c.fov_deg * float(M_PI) / 180));
     glProgramUniform1f(particles_.id(), particles_.location("pointSize"), pixels);
     glProgramUniform2f(particles_.id(), particles_.location("valueRange"), 0.0f, top);

@@ -67,9 +67,9 @@ class Renderer {
 
  private:
   void uploadTerrain(const Frame& f);
-  void drawTerrain(const Program& p, const Eigen::Matrix4f& viewProj) const;
+  void drawTerrain(const Program& p, const Eigen::Matrix4f& clipFromWorld) const;
   void drawWater() const;
-  void lightPass(const Frame& f, const RenderSettings& s, const Eigen::Matrix4f& lightViewProj);
+  void lightPass(const Frame& f, const RenderSettings& s, const Eigen::Matrix4f& lightClipFromWorld);
   void makeTargets();
   void makeLightTargets(int size);
   void makeSky();
@@ -90,7 +90,7 @@ class Renderer {
   GLuint waterLightFbo_ = 0, waterPos_ = 0, waterNormal_ = 0, waterLightDepth_ = 0;
   GLuint causticFbo_ = 0, caustic_ = 0;
   GLuint sky_ = 0;
-  Eigen::Matrix4f lightViewProj_ = Eigen::Matrix4f::Identity();
+  Eigen::Matrix4f lightClipFromWorld_ = Eigen::Matrix4f::Identity();
 };
 
 }  // namespace scour

@@ -126,9 +126,10 @@ TEST_CASE("a replay plays through the actions: tool, click, a scripted drag of e
   Posted posted;
   Actions actions(posted.post(), snap.frame.spacing);
   std::vector<std::string> shots;
-  ReplayPlayer replay(parseReplay("0 place on\n0 click 400 300\n2 press pause\n3 screenshot a.png\n",
-                                  "test.replay"),
-                      [&](const std::string& p) { shots.push_back(p); });
+  ReplayPlayer replay(
+      parseReplay("0 place on\n0 click 400 300\n2 press pause\n3 screenshot a.png\n",
+                  "test.replay"),
+      [&](const std::string& p) { shots.push_back(p); });
   for (long frame = 0; frame < 4; ++frame) {
     actions.setView(viewOf(snap));
     replay.play(frame, actions);
@@ -166,7 +167,8 @@ TEST_CASE("the exit report counts the water near the last placed source and list
   actions.click(400, 300);
   const Source s = posted.last<cmd::AddSource>().source;
   snap.sources.push_back(s);
-  snap.frame.position = {s.center.cast<float>(), (s.center + Eigen::Vector3d(0.2, 0, 0)).cast<float>(),
+  snap.frame.position = {s.center.cast<float>(),
+                         (s.center + Eigen::Vector3d(0.2, 0, 0)).cast<float>(),
                          (s.center + Eigen::Vector3d(0, 0, 0.4)).cast<float>()};
   const std::string report = exitReport(snap, 7, actions, 0);
   CHECK(report.rfind("closed after 7 frames; simulated 0 s, 0 steps; 1 sources at [(", 0) == 0);

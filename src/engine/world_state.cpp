@@ -1,0 +1,182 @@
+// The World's state as bytes: the hash the golden and determinism tests compare, saveState and
+// loadState (checkpoints, the window's snapshots), and the memory it holds.
+#include "engine/world.h"
+#include "engine/world_parts.h"
+
+#include <algorithm>
+#include <cstring>
+#include <istream>
+#include <ostream>
+#include <type_traits>
+
+namespace scour {
+
+using detail::wallSurfaceFor;
+
+uint64_t World::stateHash() const {
+  uint64_t h = 1469598103934665603ULL;
+  auto mix = [&](const void* data, size_t bytes) {
+    const auto* c = static_cast<const unsigned char*>(data);
+    for (size_t k = 0; k < bytes; ++k) h = (h ^ c[k]) * 1099511628211ULL;
+  };
+  uint64_t n = fluid_.size();
+  mix(&n, sizeof n);
+  mix(fluid_.x.data(), n * sizeof(Vec3f));
+  mix(fluid_.v.data(), n * sizeof(Vec3f));
+  mix(fluid_.sed.data(), n * sizeof(double));
+  mix(terrain_.heights().data(), terrain_.heights().size() * sizeof(double));
+  mix(&time_, sizeof time_);
+  return h;
+}
+
+namespace {
+
+template <class T>
+void put(std::ostream& o, const T& v) {
+  static_assert(std::is_trivially_copyable_v<T>);
+  o.write(reinterpret_cast<const char*>(&v), sizeof v);
+}
+template <class T>
+void putVec(std::ostream& o, const std::vector<T>& v) {
+  put(o, uint64_t(v.size()));
+  o.write(reinterpret_cast<const char*>(v.data()), std::streamsize(v.size() * sizeof(T)));
+}
+template <class T>
+void get(std::istream& in, T& v, const char* what) {
+  in.read(reinterpret_cast<char*>(&v), sizeof v);
+  if (!in) throw std::runtime_error(std::string("state ends early (in ") + what + ")");
+}
+template <class T>
+void getVec(std::istream& in, std::vector<T>& v, const char* what, uint64_t expect = UINT64_MAX) {
+  uint64_t n = 0;
+  get(in, n, what);
+  if (expect != UINT64_MAX && n != expect)
+    throw std::runtime_error(std::string("state does not fit this scene (") + what + ": " +
+                             std::to_string(n) + " entries, the scene has " +
+                             std::to_string(expect) + ")");
+  // Never more than the bytes that are left: a corrupt count cannot ask for memory.
+  const std::streampos here = in.tellg();
+  in.seekg(0, std::ios::end);
+  const std::streamoff left = in.tellg() - here;
+  in.seekg(here);
+  if (!in || left < 0 || n > uint64_t(left) / sizeof(T))
+    throw std::runtime_error(std::string("state is corrupt (") + what + ": " + std::to_string(n) +
+                             " entries, more than the state holds)");
+  v.resize(n);
+  in.read(reinterpret_cast<char*>(v.data()), std::streamsize(n * sizeof(T)));
+  if (!in) throw std::runtime_error(std::string("state ends early (in ") + what + ")");
+}
+
+constexpr uint32_t kStateTag = 0x444C5257;  // "WRLD"
+// Version 2 adds the sediment defects (naive advection), version 3 the last density rate (the
+// next Δt's bound); older states load with none.
+constexpr uint32_t kStateVersion = 3;
+
+}  // namespace
+
+void World::saveState(std::ostream& o) const {
+  put(o, kStateTag);
+  put(o, kStateVersion);
+  putVec(o, fluid_.x), putVec(o, fluid_.v), putVec(o, fluid_.a), putVec(o, fluid_.rho), putVec(o, fluid_.p);
+  putVec(o, fluid_.id), putVec(o, fluid_.sed), putVec(o, vhat_);
+  putVec(o, terrain_.heights());
+  putVec(o, boundary_.x), putVec(o, boundary_.triangle), putVec(o, boundary_.area), putVec(o, boundary_.bary);
+  putVec(o, sampler_.activeTiles());
+  put(o, uint64_t(emitters_.size()));
+  for (const Emitter& e : emitters_) put(o, e.travelled), put(o, e.emitted), put(o, e.blocked);
+  put(o, uint64_t(rain_.size()));
+  for (const RainState& r : rain_) put(o, r.pending), put(o, r.drawn), put(o, r.emitted), put(o, r.blocked);
+  put(o, time_), put(o, dt_), put(o, step_), put(o, nextId_);
+  put(o, removedSinks_), put(o, removedOutflow_), put(o, emittedTotal_), put(o, removedSediment_);
+  put(o, paintedTotal_);
+  put(o, invariants_);
+  put(o, defects_);
+  put(o, densityRate_);
+}
+
+void World::loadState(std::istream& in) {
+  uint32_t tag = 0, version = 0;
+  get(in, tag, "header");
+  get(in, version, "header");
+  if (tag != kStateTag) throw std::runtime_error("not a Scour world state");
+  if (version < 1 || version > kStateVersion)
+    throw std::runtime_error("world state version " + std::to_string(version) +
+                             ", this build reads versions 1 to " + std::to_string(kStateVersion));
+  Fluid f;
+  getVec(in, f.x, "positions");
+  const uint64_t n = f.x.size();
+  getVec(in, f.v, "velocities", n), getVec(in, f.a, "accelerations", n);
+  getVec(in, f.rho, "densities", n), getVec(in, f.p, "pressures", n);
+  getVec(in, f.id, "ids", n), getVec(in, f.sed, "sediment", n);
+  std::vector<Vec3f> vhat;
+  getVec(in, vhat, "predicted velocities");  // empty while the fluid is frozen
+  if (!vhat.empty() && vhat.size() != n) throw std::runtime_error("state is corrupt (predicted velocities)");
+  for (size_t i = 0; i < n; ++i)
+    if (!f.x[i].allFinite() || !f.v[i].allFinite() || !std::isfinite(f.rho[i]) || !(f.rho[i] > 0) ||
+        !std::isfinite(f.sed[i]) || f.sed[i] < 0)
+      throw std::runtime_error("state is corrupt (particle " + std::to_string(i) + " is not finite)");
+  std::vector<double> heights;
+  getVec(in, heights, "terrain heights", terrain_.heights().size());
+  for (double h : heights)
+    if (!std::isfinite(h)) throw std::runtime_error("state is corrupt (a terrain height is not finite)");
+  BoundaryParticles b;
+  getVec(in, b.x, "boundary particles");
+  const uint64_t nb = b.x.size();
+  getVec(in, b.triangle, "boundary triangles", nb), getVec(in, b.area, "boundary areas", nb);
+  getVec(in, b.bary, "boundary coordinates", nb);
+  for (int t : b.triangle)
+    if (t < 0 || t >= terrain_.triangleCount()) throw std::runtime_error("state is corrupt (boundary triangle)");
+  std::vector<int> tiles;
+  getVec(in, tiles, "active tiles");
+  for (int t : tiles)
+    if (t < 0 || t >= sampler_.tileCount()) throw std::runtime_error("state is corrupt (tile)");
+  uint64_t count = 0;
+  get(in, count, "sources");
+  if (count != emitters_.size())
+    throw std::runtime_error("state does not fit this scene (" + std::to_string(count) +
+                             " sources, the scene has " + std::to_string(emitters_.size()) + ")");
+  for (Emitter& e : emitters_) get(in, e.travelled, "sources"), get(in, e.emitted, "sources"), get(in, e.blocked, "sources");
+  get(in, count, "rain");
+  if (count != rain_.size())
+    throw std::runtime_error("state does not fit this scene (" + std::to_string(count) +
+                             " rain regions, the scene has " + std::to_string(rain_.size()) + ")");
+  for (RainState& r : rain_)
+    get(in, r.pending, "rain"), get(in, r.drawn, "rain"), get(in, r.emitted, "rain"), get(in, r.blocked, "rain");
+  get(in, time_, "clock"), get(in, dt_, "clock"), get(in, step_, "clock"), get(in, nextId_, "clock");
+  get(in, removedSinks_, "counters"), get(in, removedOutflow_, "counters");
+  get(in, emittedTotal_, "counters"), get(in, removedSediment_, "counters");
+  get(in, paintedTotal_, "counters");
+  get(in, invariants_, "invariants");
+  defects_ = {};
+  densityRate_ = 0;
+  if (version >= 2) get(in, defects_, "sediment defects");
+  if (version >= 3) get(in, densityRate_, "density rate");
+  f.scratch.clear();
+  fluid_ = std::move(f);
+  vhat_ = std::move(vhat);
+  terrain_.heights() = std::move(heights);
+  wall_ = wallSurfaceFor(terrain_, params_);
+  boundary_ = std::move(b);
+  sampler_.setActiveTiles(std::move(tiles));
+  energyLedger_ = mechanicalEnergy();
+  // The neighbor lists of the last search: the particles have not moved since it (a step ends
+  // with a kick), and the boundary lists are rebuilt on the boundary particles' places.
+  buildFluidLists();
+  if (needsBoundary()) buildBoundaryLists();
+}
+
+size_t World::memoryBytes() const {
+  // x v a vhat, rho p scratch, id, sed
+  size_t per = sizeof(Vec3f) * 4 + sizeof(float) * 3 + sizeof(uint32_t) + sizeof(double);
+  return fluid_.x.capacity() * per + grid_.bytes() + fluidTree_.bytes() + boundaryTree_.bytes() +
+         fluidNeighbors_.bytes() + boundaryNeighbors_.bytes() +
+         boundary_.x.capacity() * (sizeof(Vec3f) + sizeof(int) + sizeof(double) + sizeof(Eigen::Vector2f)) +
+         (boundaryStart_.capacity() + boundarySorted_.capacity()) * sizeof(uint32_t) +
+         (sedimentWork_.conc.capacity() + sedimentWork_.hind.capacity() +
+          sedimentWork_.pairGeometry.capacity()) * sizeof(float) +
+         sedimentWork_.scale.capacity() * sizeof(SedimentWorkspace::Scales) +
+         sedimentWork_.delta.capacity() * sizeof(double) +
+         sedimentWork_.pairOffset.capacity() * sizeof(size_t);
+}
+
+}  // namespace scour
