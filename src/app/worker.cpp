@@ -1,5 +1,7 @@
 #include "app/worker.h"
 
+#include "engine/step_driver.h"
+
 #include "scene/checkpoint.h"
 #include "scene/output.h"
 #include "scene/scene_json.h"
@@ -90,11 +92,12 @@ void SimulationWorker::run() {
     applyAll(commands);
     if (!paused_ || stepsToDo_ > 0) {
       const auto t0 = Clock::now();
-      int done = 0;
-      try {
-        for (; done < stepsPerFrame_; ++done) world_->step();
-      } catch (const InvariantViolation& e) {
-        error_ = std::string("invariant violated at ") + e.what() + " (paused; reset to go on)";
+      const RunEnd end = runSteps(*world_, stepsPerFrame_);
+      const long done = end.steps;
+      if (!end.ok()) {
+        const bool invariant = end.status == RunEnd::Status::kInvariantViolated;
+        error_ = std::string(invariant ? "invariant violated at " : "the run stopped: ") +
+                 end.message + " (paused; reset to go on)";
         paused_ = true;
       }
       if (stepsToDo_ > 0) --stepsToDo_;

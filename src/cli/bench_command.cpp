@@ -11,6 +11,7 @@
 #include "app/worker.h"
 #include "cli/commands.h"
 #include "cli/render_options.h"
+#include "engine/step_driver.h"
 #include "render/context.h"
 #include "render/renderer.h"
 #include "scene/scene_json.h"
@@ -20,6 +21,17 @@ namespace scour {
 using nlohmann::json;
 
 namespace {
+
+// A run of steps that did not end well: the message, and the exit code run would give.
+int stepFailure(const RunEnd& end, const std::string& scene = "") {
+  std::cerr << "error: " << (scene.empty() ? "" : scene + ": ")
+            << (end.status == RunEnd::Status::kInvariantViolated ? "invariant violated at "
+                : end.status == RunEnd::Status::kLimitExceeded   ? "limit reached at "
+                                                                 : "")
+            << end.message << "\n";
+  return end.status == RunEnd::Status::kFailed ? kExitFailure : kExitInvariant;
+}
+
 
 struct BenchOptions {
   std::string scene = "block";
@@ -68,18 +80,13 @@ int ablation(const BenchOptions& o, const Scene& scene) {
     worlds.push_back(std::make_unique<World>(d));
   }
   std::vector<std::vector<double>> t(configs.size());
-  try {
-    for (long s = 0; s < o.warmup + o.steps; ++s)
-      for (size_t c = 0; c < configs.size(); ++c) {
-        auto t0 = std::chrono::steady_clock::now();
-        worlds[c]->step();
-        if (s >= o.warmup)
-          t[c].push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
-      }
-  } catch (const InvariantViolation& e) {
-    std::cerr << "error: invariant violated at " << e.what() << "\n";
-    return kExitInvariant;
-  }
+  for (long s = 0; s < o.warmup + o.steps; ++s)
+    for (size_t c = 0; c < configs.size(); ++c) {
+      const RunEnd end = runSteps(*worlds[c], 1, [&](const StepRecord& r) {
+        if (s >= o.warmup) t[c].push_back(r.seconds);
+      });
+      if (!end.ok()) return stepFailure(end);
+    }
   json j;
   j["scene"] = o.scene;
   j["particles"] = worlds[0]->fluid().size();
@@ -105,7 +112,7 @@ int ablation(const BenchOptions& o, const Scene& scene) {
 // with the occupancy grid and without it.
 int benchRender(const BenchOptions& o, const Scene& scene) {
   World world(scene.desc);
-  for (long s = 0; s < o.warmup; ++s) world.step();
+  if (const RunEnd end = runSteps(world, o.warmup); !end.ok()) return stepFailure(end);
   const Frame frame = makeFrame(world);
   const auto [w, h] = parseSize(o.size, 16);
   const auto context = createGlContext(GlBackend::kEgl);
@@ -191,25 +198,14 @@ int benchPaper(const BenchOptions& o) {
     World w(scene.desc);
     std::vector<double> g[3], total;
     size_t particles = 0;
-    try {
-      for (long s = 0; s < o.warmup; ++s) w.step();
-      for (long s = 0; s < o.steps; ++s) {
-        const auto before = w.passSeconds();
-        const auto t0 = std::chrono::steady_clock::now();
-        w.step();
-        total.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
-        double sum[3] = {0, 0, 0};
-        for (size_t p = 0; p < size_t(Pass::kCount); ++p) {
-          const int k = int(table1Group(Pass(p)));
-          if (k < 3) sum[k] += w.passSeconds()[p] - before[p];
-        }
-        for (int k = 0; k < 3; ++k) g[k].push_back(sum[k]);
+    RunEnd end = runSteps(w, o.warmup);
+    if (end.ok())
+      end = runSteps(w, o.steps, [&](const StepRecord& r) {
+        total.push_back(r.seconds);
+        for (int k = 0; k < 3; ++k) g[k].push_back(r.groupSeconds[size_t(k)]);
         particles += w.fluid().size();
-      }
-    } catch (const InvariantViolation& e) {
-      std::cerr << "error: " << r.scene << ": invariant violated at " << e.what() << "\n";
-      return kExitInvariant;
-    }
+      });
+    if (!end.ok()) return stepFailure(end, r.scene);
     const double n = double(particles) / double(o.steps);
     const double ours[3] = {median(g[int(Table1Group::kSph)]), median(g[int(Table1Group::kErosion)]),
                             median(g[int(Table1Group::kBoundary)])};
@@ -314,26 +310,15 @@ int bench(const BenchOptions& o) {
   std::vector<std::vector<double>> perPass(kPasses);
   std::vector<double> total, groups[4];
   size_t particles = 0;
-  try {
-    for (long s = 0; s < o.warmup; ++s) world->step();
-    for (long s = 0; s < o.steps; ++s) {
-      auto before = world->passSeconds();
-      auto t0 = std::chrono::steady_clock::now();
-      world->step();
-      total.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
-      double g[4] = {0, 0, 0, 0};
-      for (size_t p = 0; p < kPasses; ++p) {
-        double d = world->passSeconds()[p] - before[p];
-        perPass[p].push_back(d);
-        g[int(table1Group(Pass(p)))] += d;
-      }
-      for (int k = 0; k < 4; ++k) groups[k].push_back(g[k]);
+  RunEnd end = runSteps(*world, o.warmup);
+  if (end.ok())
+    end = runSteps(*world, o.steps, [&](const StepRecord& r) {
+      total.push_back(r.seconds);
+      for (size_t p = 0; p < kPasses; ++p) perPass[p].push_back(r.passSeconds[p]);
+      for (int k = 0; k < 4; ++k) groups[k].push_back(r.groupSeconds[size_t(k)]);
       particles += world->fluid().size();
-    }
-  } catch (const InvariantViolation& e) {
-    std::cerr << "error: invariant violated at " << e.what() << "\n";
-    return kExitInvariant;
-  }
+    });
+  if (!end.ok()) return stepFailure(end);
   const double meanParticles = double(particles) / double(o.steps);
   const double tTotal = median(total);
   const double tSph = median(groups[int(Table1Group::kSph)]);

@@ -7,14 +7,15 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <iomanip>
 #include <iostream>
 #include <sstream>
 
 #include "cli/commands.h"
 #include "cli/render_options.h"
+#include "engine/step_driver.h"
 #include "scene/checkpoint.h"
 #include "scene/output.h"
+#include "scene/run_outputs.h"
 #include "scene/scene_json.h"
 
 namespace scour {
@@ -93,31 +94,6 @@ struct RunOptions {
   RenderOptions render;
 };
 
-std::string frameName(long step) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, "frame_%06ld.png", step);
-  return buf;
-}
-
-std::string checkpointName(long step) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, "checkpoint_%06ld.ckpt", step);
-  return buf;
-}
-
-std::string plyName(long step) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, "particles_%06ld.ply", step);
-  return buf;
-}
-
-json passSecondsJson(const World& w) {
-  json j = json::object();
-  for (size_t p = 0; p < size_t(Pass::kCount); ++p)
-    if (w.passCalls()[p] > 0) j[passName(Pass(p))] = w.passSeconds()[p];
-  return j;
-}
-
 int runScene(const RunOptions& o) {
   setThreads(o.threads);
   Scene scene;
@@ -167,23 +143,6 @@ int runScene(const RunOptions& o) {
   auto start = std::chrono::steady_clock::now();
   auto lastReport = start;
   const bool tty = ::isatty(2);
-  // metrics.csv: one row every K steps (and at step 0), cumulative pass seconds; written whole
-  // at the end, through a temporary file.
-  std::ostringstream metrics;
-  metrics << "step,time_s,dt_s,particles,max_speed_m_s,terrain_m3,suspended_m3,removed_m3,"
-             "soil_relative_error";
-  for (size_t p = 0; p < size_t(Pass::kCount); ++p) metrics << "," << passName(Pass(p)) << "_s";
-  metrics << "\n";
-  auto metricsRow = [&](double dt, double maxSpeed) {
-    const SoilBudget soil = world->soilBudget();
-    metrics << world->steps() << "," << std::setprecision(9) << world->time() << "," << dt << ","
-            << world->fluid().size() << "," << maxSpeed << "," << std::setprecision(15)
-            << soil.terrain << "," << soil.suspended << "," << soil.removed << ","
-            << soil.relativeError() << std::setprecision(6);
-    for (size_t p = 0; p < size_t(Pass::kCount); ++p) metrics << "," << world->passSeconds()[p];
-    metrics << "\n";
-  };
-  metricsRow(0.0, 0.0);
   auto progress = [&](bool last) {
     const double done = o.steps > 0 ? double(world->steps()) / double(o.steps) : world->time() / o.time;
     const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -200,88 +159,29 @@ int runScene(const RunOptions& o) {
       std::cerr << line << "\n";
     }
   };
-  if (o.particlesEvery > 0) writeParticlesPly(dir / plyName(0), world->fluid(), world->params().particleVolume(), 0.0);
-  if (frames) frames->write(makeFrame(*world), (dir / frameName(world->steps())).string());
-  std::string failure, status = "ok";
-  try {
-    while (o.steps > 0 ? world->steps() < o.steps : world->time() < o.time - 1e-12) {
-      const StepStats st = world->step();
-      if (o.particlesEvery > 0 && world->steps() % o.particlesEvery == 0)
-        writeParticlesPly(dir / plyName(world->steps()), world->fluid(),
-                          world->params().particleVolume(), world->time());
-      if (world->steps() % o.metricsEvery == 0) metricsRow(st.dt, st.max_speed);
-      if (frames && world->steps() % o.framesEvery == 0)
-        frames->write(makeFrame(*world), (dir / frameName(world->steps())).string());
-      if (o.checkpointEvery > 0 && world->steps() % o.checkpointEvery == 0)
-        writeCheckpoint((dir / checkpointName(world->steps())).string(), scene.spec, *world);
-      auto now = std::chrono::steady_clock::now();
-      // A terminal gets a live bar; a log gets one plain line every few seconds.
-      if (now - lastReport > (tty ? std::chrono::milliseconds(200) : std::chrono::milliseconds(5000))) {
-        lastReport = now;
-        progress(false);
-      }
+  RunOutputs outputs(dir, {o.particlesEvery, o.metricsEvery, o.checkpointEvery, o.mesh}, scene);
+  outputs.start(*world);
+  if (frames) frames->write(makeFrame(*world), (dir / RunOutputs::frameName(world->steps())).string());
+  auto more = [&] {
+    return o.steps > 0 ? world->steps() < o.steps : world->time() < o.time - 1e-12;
+  };
+  // Whatever a step (or an output after it) throws, the run still ends with its summary and the
+  // documented code.
+  const RunEnd end = runWhile(*world, more, [&](const StepRecord& record) {
+    outputs.afterStep(*world, record);
+    if (frames && world->steps() % o.framesEvery == 0)
+      frames->write(makeFrame(*world), (dir / RunOutputs::frameName(world->steps())).string());
+    auto now = std::chrono::steady_clock::now();
+    // A terminal gets a live bar; a log gets one plain line every few seconds.
+    if (now - lastReport > (tty ? std::chrono::milliseconds(200) : std::chrono::milliseconds(5000))) {
+      lastReport = now;
+      progress(false);
     }
-  } catch (const InvariantViolation& e) {
-    failure = e.what(), status = "invariant_violated";
-  } catch (const LimitExceeded& e) {
-    failure = e.what(), status = "limit_exceeded";
-  } catch (const std::exception& e) {
-    // Whatever else a step throws (memory, an output that cannot be written), the run still
-    // ends with its summary and the documented code.
-    failure = e.what(), status = "failed";
-  }
+  });
   if (tty) progress(true);
-  writeAtomically(dir / "metrics.csv", [&](std::ostream& out) { out << metrics.str(); });
-  double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-
-  json summary;
-  summary["status"] = status;
-  if (!failure.empty()) summary["error"] = failure;
-  summary["particles"] = world->fluid().size();
-  summary["steps"] = world->steps();
-  summary["sim_time_s"] = world->time();
-  summary["wall_s"] = wall;
-  summary["threads"] = omp_get_max_threads();
-  summary["pass_seconds"] = passSecondsJson(*world);
-  const InvariantReport& inv = world->invariants();
-  summary["invariants"] = {{"nan", inv.nan},
-                           {"max_penetration_over_ds", inv.max_penetration_over_ds},
-                           {"escaped", inv.escaped},
-                           {"c_min", inv.c_min},
-                           {"c_max", inv.c_max}};
-  const SoilBudget soil = world->soilBudget();
-  summary["soil"] = {{"terrain_m3", soil.terrain},
-                     {"suspended_m3", soil.suspended},
-                     {"removed_m3", soil.removed},
-                     {"initial_m3", soil.initial},
-                     {"relative_error", soil.relativeError()},
-                     {"worst_relative_error", inv.soil_relative_error},
-                     {"reference_height_m", world->initialTerrain().minHeight()}};
-  summary["flow"] = {{"emitted", world->emitted()},
-                     {"blocked_slots", world->blockedSlots()},
-                     {"removed_by_sinks", world->removedBySinks()},
-                     {"removed_by_outflow", world->removedByOutflow()}};
-  std::ostringstream hash;
-  hash << std::hex << std::setw(16) << std::setfill('0') << world->stateHash();
-  summary["state_hash"] = hash.str();
-  summary["scene"] = sceneToJson(scene);
-  // Terrain exports: heights now, and the change since the start.
-  auto [lo, hi] = writeHeightPng16(dir / "height.png", world->terrain());
-  writeHeightRaw(dir / "height.r32", world->terrain());
-  const double changeScale = writeErosionPng(dir / "erosion.png", world->terrain(), world->heightChange());
-  if (o.mesh) writeTerrainObj(dir / "mesh.obj", world->terrain());
-  const Heightfield& hf = world->terrain();
-  summary["exports"] = {
-      {"height_png",
-       {{"file", "height.png"}, {"min_m", lo}, {"max_m", hi},
-        {"mapping", "h = min_m + v / 65535 * (max_m - min_m); row k is z = z0 + k dz, column i is x = x0 + i dx"}}},
-      {"height_r32",
-       {{"file", "height.r32"}, {"nx", hf.nx()}, {"nz", hf.nz()}, {"dx", hf.dx()}, {"dz", hf.dz()},
-        {"format", "float32 little-endian, row-major: nz rows of nx heights [m]"}}},
-      {"erosion_png",
-       {{"file", "erosion.png"}, {"scale_m", changeScale},
-        {"mapping", "white: unchanged; red: erosion; blue: deposition; full colour at |dh| = scale_m"}}}};
-  writeAtomically(dir / "summary.json", [&](std::ostream& out) { out << summary.dump(2) << "\n"; });
+  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  outputs.finish(*world, end, wall);
+  const std::string failure = end.message, status = end.statusName();
 
   if (!failure.empty()) {
     const char* what = status == "invariant_violated" ? "invariant violated at "

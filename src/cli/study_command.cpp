@@ -10,6 +10,7 @@
 #include <memory>
 
 #include "cli/commands.h"
+#include "engine/step_driver.h"
 #include "engine/frame.h"
 #include "render/context.h"
 #include "render/surface.h"
@@ -78,7 +79,8 @@ double meshDistance(const std::vector<SurfaceTriangle>& mesh,
 std::vector<StudyRow> renderGridStudy(bool quick, const std::function<void(const std::string&)>& log) {
   SceneSpec spec = presetSpec("dambreak", quick ? 0.3 : 1.0);
   World w(buildScene(spec).desc);
-  while (w.time() < 0.14) w.step();
+  const RunEnd end = runWhile(w, [&] { return w.time() < 0.14; }, [](const StepRecord&) {});
+  if (!end.ok()) throw std::runtime_error("render grid study: the dam break stopped: " + end.message);
   const Frame frame = makeFrame(w);
   const double ds = spec.params.spacing;
   const auto context = createGlContext(GlBackend::kEgl);

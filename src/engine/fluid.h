@@ -1,10 +1,13 @@
 #pragma once
 // Fluid particles as structure-of-arrays. Every per-particle array has size(); passes index them
 // with the same i. Positions and velocities are float (bandwidth); quantities that must be
-// conserved to rounding (sediment, later) are double.
+// conserved to rounding (sediment) are double. An array is added in one place, forEachArray:
+// push, gather (reorders and removals), saving and loading a world state and the memory count
+// all go through it.
 
 #include <Eigen/Core>
 #include <cstdint>
+#include <type_traits>
 #include <vector>
 
 namespace scour {
@@ -23,14 +26,36 @@ struct Fluid {
 
   size_t size() const { return x.size(); }
 
+  /// Calls f(name, array) for every array that holds a particle's state (not `scratch`), in the
+  /// order a world state stores them; `name` is what a corrupt state's message calls it.
+  template <class F>
+  void forEachArray(F&& f) {
+    f("positions", x), f("velocities", v), f("accelerations", a), f("densities", rho);
+    f("pressures", p), f("ids", id), f("sediment", sed);
+  }
+  template <class F>
+  void forEachArray(F&& f) const {
+    const_cast<Fluid&>(*this).forEachArray(
+        [&](const char* name, const auto& array) { f(name, array); });
+  }
+
+  /// A new particle: every array gets a zero, then its place, velocity, id and density.
   void push(const Vec3f& pos, const Vec3f& vel, uint32_t ident, float density) {
-    x.push_back(pos);
-    v.push_back(vel);
-    a.push_back(Vec3f::Zero());
-    rho.push_back(density);
-    sed.push_back(0.0);
-    p.push_back(0.0f);
-    id.push_back(ident);
+    forEachArray([](const char*, auto& array) {
+      using T = typename std::remove_reference_t<decltype(array)>::value_type;
+      if constexpr (std::is_arithmetic_v<T>) array.push_back(T(0));
+      else array.push_back(T::Zero());
+    });
+    x.back() = pos, v.back() = vel, id.back() = ident, rho.back() = density;
+  }
+  /// Bytes a particle takes in the arrays.
+  static size_t bytesPerParticle() {
+    size_t bytes = 0;
+    Fluid probe;
+    probe.forEachArray([&](const char*, const auto& array) {
+      bytes += sizeof(typename std::remove_reference_t<decltype(array)>::value_type);
+    });
+    return bytes;
   }
 
   /// Applies a permutation: new[k] = old[order[k]]. Used by the Z-order reorder and by removals

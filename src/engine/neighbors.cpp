@@ -13,18 +13,11 @@
 namespace scour {
 
 void Fluid::gather(const std::vector<uint32_t>& order) {
-  auto apply = [&](auto& arr) {
-    std::remove_reference_t<decltype(arr)> out(order.size());
-    for (size_t k = 0; k < order.size(); ++k) out[k] = arr[order[k]];
-    arr.swap(out);
-  };
-  apply(x);
-  apply(v);
-  apply(a);
-  apply(rho);
-  apply(p);
-  apply(id);
-  apply(sed);
+  forEachArray([&](const char*, auto& array) {
+    std::remove_reference_t<decltype(array)> out(order.size());
+    for (size_t k = 0; k < order.size(); ++k) out[k] = array[order[k]];
+    array.swap(out);
+  });
 }
 
 Eigen::Vector3i Grid::cellOf(const Vec3f& p) const {

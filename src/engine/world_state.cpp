@@ -77,8 +77,8 @@ constexpr uint32_t kStateVersion = 3;
 void World::saveState(std::ostream& o) const {
   put(o, kStateTag);
   put(o, kStateVersion);
-  putVec(o, fluid_.x), putVec(o, fluid_.v), putVec(o, fluid_.a), putVec(o, fluid_.rho), putVec(o, fluid_.p);
-  putVec(o, fluid_.id), putVec(o, fluid_.sed), putVec(o, vhat_);
+  fluid_.forEachArray([&](const char*, const auto& array) { putVec(o, array); });
+  putVec(o, vhat_);
   putVec(o, terrain_.heights());
   putVec(o, boundary_.x), putVec(o, boundary_.triangle), putVec(o, boundary_.area), putVec(o, boundary_.bary);
   putVec(o, sampler_.activeTiles());
@@ -103,11 +103,11 @@ void World::loadState(std::istream& in) {
     throw std::runtime_error("world state version " + std::to_string(version) +
                              ", this build reads versions 1 to " + std::to_string(kStateVersion));
   Fluid f;
-  getVec(in, f.x, "positions");
-  const uint64_t n = f.x.size();
-  getVec(in, f.v, "velocities", n), getVec(in, f.a, "accelerations", n);
-  getVec(in, f.rho, "densities", n), getVec(in, f.p, "pressures", n);
-  getVec(in, f.id, "ids", n), getVec(in, f.sed, "sediment", n);
+  uint64_t n = UINT64_MAX;  // the first array's count, which every other one must have
+  f.forEachArray([&](const char* name, auto& array) {
+    getVec(in, array, name, n);
+    n = array.size();
+  });
   std::vector<Vec3f> vhat;
   getVec(in, vhat, "predicted velocities");  // empty while the fluid is frozen
   if (!vhat.empty() && vhat.size() != n) throw std::runtime_error("state is corrupt (predicted velocities)");
@@ -166,8 +166,8 @@ void World::loadState(std::istream& in) {
 }
 
 size_t World::memoryBytes() const {
-  // x v a vhat, rho p scratch, id, sed
-  size_t per = sizeof(Vec3f) * 4 + sizeof(float) * 3 + sizeof(uint32_t) + sizeof(double);
+  // The fluid's arrays, the predicted velocities and the scratch array.
+  const size_t per = Fluid::bytesPerParticle() + sizeof(Vec3f) + sizeof(float);
   return fluid_.x.capacity() * per + grid_.bytes() + fluidTree_.bytes() + boundaryTree_.bytes() +
          fluidNeighbors_.bytes() + boundaryNeighbors_.bytes() +
          boundary_.x.capacity() * (sizeof(Vec3f) + sizeof(int) + sizeof(double) + sizeof(Eigen::Vector2f)) +

@@ -1,5 +1,6 @@
 #include "study/stress.h"
 #include "engine/sources.h"
+#include "engine/step_driver.h"
 #include "scene/builtin_scenes.h"
 
 #include <algorithm>
@@ -103,7 +104,11 @@ StressResult runStress(const StressScene& scene, const StressLimits& limits,
   auto fail = [&](const std::string& what) {
     if (r.pass) r.pass = false, r.failure = what;
   };
-  while (world.time() < scene.duration && r.pass && (scene.max_steps <= 0 || r.steps < scene.max_steps)) {
+  // Before each step: is there more to run, and which parameter jumps are due.
+  auto more = [&] {
+    if (!(world.time() < scene.duration && r.pass &&
+          (scene.max_steps <= 0 || r.steps < scene.max_steps)))
+      return false;
     for (size_t j = 0; j < scene.jumps.size(); ++j) {
       if (jumped[j] || world.time() < scene.jumps[j].time) continue;
       jumped[j] = true;
@@ -113,13 +118,10 @@ StressResult runStress(const StressScene& scene, const StressLimits& limits,
       q.*(info->dmember) *= scene.jumps[j].factor;
       world.setParams(q);
     }
-    try {
-      const StepStats st = world.step();
-      r.min_dt = std::min(r.min_dt, st.dt);
-      r.max_speed = std::max(r.max_speed, st.max_speed);
-    } catch (const InvariantViolation& e) {
-      fail(e.what());
-    }
+    return true;
+  };
+  // After each step, and after the one that failed: the checks the engine does not make.
+  auto check = [&] {
     ++r.steps;
     const InvariantReport& inv = world.invariants();
     r.nan = inv.nan;
@@ -174,7 +176,13 @@ StressResult runStress(const StressScene& scene, const StressLimits& limits,
     r.simulated = world.time();
     r.wall_seconds = std::chrono::duration<double>(Clock::now() - start).count();
     if (progress && r.steps % 500 == 0) progress(r);
-  }
+  };
+  const RunEnd end = runWhile(world, more, [&](const StepRecord& st) {
+    r.min_dt = std::min(r.min_dt, st.stats.dt);
+    r.max_speed = std::max(r.max_speed, st.stats.max_speed);
+    check();
+  });
+  if (!end.ok()) fail(end.message), check();
   if (!std::isfinite(r.min_dt)) r.min_dt = 0;
   r.wall_seconds = std::chrono::duration<double>(Clock::now() - start).count();
   return r;

@@ -1,5 +1,7 @@
 #include "study/study.h"
 
+#include "engine/step_driver.h"
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -31,14 +33,9 @@ template <class Until, class Each>
 Run drive(World& w, Until&& until, Each&& each) {
   Run r;
   const auto start = Clock::now();
-  try {
-    while (!until()) {
-      w.step();
-      each();
-    }
-  } catch (const InvariantViolation& e) {
-    r.status = std::string("unstable: ") + e.what();
-  }
+  const RunEnd end = runWhile(w, [&] { return !until(); }, [&](const StepRecord&) { each(); });
+  if (end.status == RunEnd::Status::kInvariantViolated) r.status = "unstable: " + end.message;
+  else if (!end.ok()) throw std::runtime_error(end.message);
   r.wall = seconds(start);
   return r;
 }

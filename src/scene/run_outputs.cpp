@@ -1,0 +1,137 @@
+#include "scene/run_outputs.h"
+
+#include <omp.h>
+
+#include <cstdio>
+#include <iomanip>
+
+#include "scene/checkpoint.h"
+#include "scene/output.h"
+#include "scene/scene_json.h"
+
+namespace scour {
+
+using nlohmann::json;
+
+namespace {
+
+std::string numbered(const char* pattern, long step) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, pattern, step);
+  return buf;
+}
+
+json passSecondsJson(const World& w) {
+  json j = json::object();
+  for (size_t p = 0; p < size_t(Pass::kCount); ++p)
+    if (w.passCalls()[p] > 0) j[passName(Pass(p))] = w.passSeconds()[p];
+  return j;
+}
+
+}  // namespace
+
+std::string RunOutputs::frameName(long step) { return numbered("frame_%06ld.png", step); }
+
+RunOutputs::RunOutputs(std::filesystem::path dir, RunOutputOptions o, const Scene& scene)
+    : dir_(std::move(dir)), options_(o), scene_(scene) {
+  // One row every K steps (and at step 0), cumulative pass seconds.
+  metrics_ << "step,time_s,dt_s,particles,max_speed_m_s,terrain_m3,suspended_m3,removed_m3,"
+              "soil_relative_error";
+  for (size_t p = 0; p < size_t(Pass::kCount); ++p) metrics_ << "," << passName(Pass(p)) << "_s";
+  metrics_ << "\n";
+}
+
+void RunOutputs::metricsRow(const World& w, double dt, double maxSpeed) {
+  const SoilBudget soil = w.soilBudget();
+  metrics_ << w.steps() << "," << std::setprecision(9) << w.time() << "," << dt << ","
+           << w.fluid().size() << "," << maxSpeed << "," << std::setprecision(15) << soil.terrain
+           << "," << soil.suspended << "," << soil.removed << "," << soil.relativeError()
+           << std::setprecision(6);
+  for (size_t p = 0; p < size_t(Pass::kCount); ++p) metrics_ << "," << w.passSeconds()[p];
+  metrics_ << "\n";
+}
+
+void RunOutputs::start(const World& w) {
+  metricsRow(w, 0.0, 0.0);
+  if (options_.particlesEvery > 0)
+    writeParticlesPly(dir_ / numbered("particles_%06ld.ply", 0), w.fluid(),
+                      w.params().particleVolume(), 0.0);
+}
+
+void RunOutputs::afterStep(const World& w, const StepRecord& r) {
+  const long step = w.steps();
+  if (options_.particlesEvery > 0 && step % options_.particlesEvery == 0)
+    writeParticlesPly(dir_ / numbered("particles_%06ld.ply", step), w.fluid(),
+                      w.params().particleVolume(), w.time());
+  if (step % options_.metricsEvery == 0) metricsRow(w, r.stats.dt, r.stats.max_speed);
+  if (options_.checkpointEvery > 0 && step % options_.checkpointEvery == 0)
+    writeCheckpoint((dir_ / numbered("checkpoint_%06ld.ckpt", step)).string(), scene_.spec, w);
+}
+
+// Heights now and their change since the start, with how to read them back.
+json RunOutputs::exports(const World& w) {
+  const Heightfield& hf = w.terrain();
+  auto [lo, hi] = writeHeightPng16(dir_ / "height.png", hf);
+  writeHeightRaw(dir_ / "height.r32", hf);
+  const double changeScale = writeErosionPng(dir_ / "erosion.png", hf, w.heightChange());
+  if (options_.mesh) writeTerrainObj(dir_ / "mesh.obj", hf);
+  return {{"height_png",
+           {{"file", "height.png"},
+            {"min_m", lo},
+            {"max_m", hi},
+            {"mapping",
+             "h = min_m + v / 65535 * (max_m - min_m); row k is z = z0 + k dz, column i is x = "
+             "x0 + i dx"}}},
+          {"height_r32",
+           {{"file", "height.r32"},
+            {"nx", hf.nx()},
+            {"nz", hf.nz()},
+            {"dx", hf.dx()},
+            {"dz", hf.dz()},
+            {"format", "float32 little-endian, row-major: nz rows of nx heights [m]"}}},
+          {"erosion_png",
+           {{"file", "erosion.png"},
+            {"scale_m", changeScale},
+            {"mapping",
+             "white: unchanged; red: erosion; blue: deposition; full colour at |dh| = scale_m"}}}};
+}
+
+json RunOutputs::finish(const World& w, const RunEnd& end, double wallSeconds) {
+  writeAtomically(dir_ / "metrics.csv", [&](std::ostream& out) { out << metrics_.str(); });
+  json summary;
+  summary["status"] = end.statusName();
+  if (!end.message.empty()) summary["error"] = end.message;
+  summary["particles"] = w.fluid().size();
+  summary["steps"] = w.steps();
+  summary["sim_time_s"] = w.time();
+  summary["wall_s"] = wallSeconds;
+  summary["threads"] = omp_get_max_threads();
+  summary["pass_seconds"] = passSecondsJson(w);
+  const InvariantReport& inv = w.invariants();
+  summary["invariants"] = {{"nan", inv.nan},
+                           {"max_penetration_over_ds", inv.max_penetration_over_ds},
+                           {"escaped", inv.escaped},
+                           {"c_min", inv.c_min},
+                           {"c_max", inv.c_max}};
+  const SoilBudget soil = w.soilBudget();
+  summary["soil"] = {{"terrain_m3", soil.terrain},
+                     {"suspended_m3", soil.suspended},
+                     {"removed_m3", soil.removed},
+                     {"initial_m3", soil.initial},
+                     {"relative_error", soil.relativeError()},
+                     {"worst_relative_error", inv.soil_relative_error},
+                     {"reference_height_m", w.initialTerrain().minHeight()}};
+  summary["flow"] = {{"emitted", w.emitted()},
+                     {"blocked_slots", w.blockedSlots()},
+                     {"removed_by_sinks", w.removedBySinks()},
+                     {"removed_by_outflow", w.removedByOutflow()}};
+  std::ostringstream hash;
+  hash << std::hex << std::setw(16) << std::setfill('0') << w.stateHash();
+  summary["state_hash"] = hash.str();
+  summary["scene"] = sceneToJson(scene_);
+  summary["exports"] = exports(w);
+  writeAtomically(dir_ / "summary.json", [&](std::ostream& out) { out << summary.dump(2) << "\n"; });
+  return summary;
+}
+
+}  // namespace scour

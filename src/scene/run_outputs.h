@@ -1,0 +1,50 @@
+#pragma once
+// What `scour run` writes into its output directory, except the pictures (they need GL and are
+// the command's): particles every N steps, checkpoints every N steps, metrics.csv (a row every N
+// steps), and at the end the terrain exports and summary.json (docs/cli.md). Every file goes
+// through writeAtomically, so a run that stops leaves no half-written file.
+
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <string>
+
+#include "engine/step_driver.h"
+#include "scene/presets.h"
+
+namespace scour {
+
+struct RunOutputOptions {
+  long particlesEvery = 0;   ///< > 0: particles_<step>.ply every this many steps (and at 0)
+  long metricsEvery = 10;    ///< a metrics.csv row every this many steps (and at 0)
+  long checkpointEvery = 0;  ///< > 0: checkpoint_<step>.ckpt every this many steps
+  bool mesh = false;         ///< also mesh.obj at the end
+};
+
+class RunOutputs {
+ public:
+  /// `dir` exists; `scene` is what the summary and the checkpoints record.
+  RunOutputs(std::filesystem::path dir, RunOutputOptions o, const Scene& scene);
+
+  /// Before the first step: the first particles file and metrics row.
+  void start(const World& w);
+  /// After each step.
+  void afterStep(const World& w, const StepRecord& r);
+  /// At the end, however the run ended: metrics.csv, the terrain exports and summary.json
+  /// (its "status" is end.statusName(), its "error" the message). Returns the summary.
+  nlohmann::json finish(const World& w, const RunEnd& end, double wallSeconds);
+
+  /// "frame_000120.png": the name of a picture of step `step`.
+  static std::string frameName(long step);
+
+ private:
+  void metricsRow(const World& w, double dt, double maxSpeed);
+  nlohmann::json exports(const World& w);
+
+  std::filesystem::path dir_;
+  RunOutputOptions options_;
+  const Scene& scene_;
+  std::ostringstream metrics_;
+};
+
+}  // namespace scour

@@ -1,0 +1,62 @@
+// The one step driver: it counts and times the steps it runs, says why a run stopped, and a
+// run through it is the same run as World::step in a loop.
+#include <catch2/catch.hpp>
+
+#include "engine/step_driver.h"
+#include "scene/presets.h"
+
+using namespace scour;
+
+TEST_CASE("the step driver runs, times and stops as the caller asks", "[engine][driver]") {
+  const Scene s = makePreset("default", 0.05);
+  World driven(s.desc), looped(s.desc);
+  double passes = 0, groups = 0;
+  long seen = 0;
+  const RunEnd end = runSteps(driven, 20, [&](const StepRecord& r) {
+    ++seen;
+    CHECK(r.stats.step == seen);
+    CHECK(r.seconds > 0);
+    for (double t : r.passSeconds) passes += t;
+    for (double t : r.groupSeconds) groups += t;
+  });
+  for (int k = 0; k < 20; ++k) looped.step();
+  CHECK(end.ok());
+  CHECK(std::string(end.statusName()) == "ok");
+  CHECK(end.steps == 20);
+  CHECK(seen == 20);
+  CHECK(driven.stateHash() == looped.stateHash());
+  // Every pass falls in one Table 1 group, and the groups add up to the passes.
+  CHECK(groups == Approx(passes).epsilon(1e-12));
+  double total = 0;
+  for (double t : driven.passSeconds()) total += t;
+  CHECK(passes <= total);  // the construction's own passes are not a step's
+  // runWhile stops when asked.
+  const RunEnd half = runWhile(driven, [&] { return driven.time() < 2 * looped.time(); },
+                               [](const StepRecord&) {});
+  CHECK(half.ok());
+  CHECK(driven.time() >= 2 * looped.time());
+}
+
+TEST_CASE("the step driver says which way a run stopped", "[engine][driver]") {
+  Scene s = makePreset("slope");
+  // Gravity 10× and a penalty far too soft to hold it: particles fall through the terrain.
+  s.desc.params.gravity = 100.0;
+  s.desc.params.penalty_stiffness = 1.0;
+  s.desc.params.penalty_damping = 1.0;
+  World w(s.desc);
+  const RunEnd broken = runSteps(w, 5000);
+  CHECK(broken.status == RunEnd::Status::kInvariantViolated);
+  CHECK(std::string(broken.statusName()) == "invariant_violated");
+  CHECK(broken.steps < 5000);
+  CHECK(broken.steps == w.steps() - 1);  // the failed step is not counted
+  CHECK_THAT(broken.message, Catch::Contains("step ") && Catch::Contains("particle "));
+  // What the caller does after a step (an output, say) can end the run too.
+  World fine(makePreset("default", 0.05).desc);
+  const RunEnd failed = runSteps(fine, 10, [&](const StepRecord& r) {
+    if (r.stats.step == 3) throw std::runtime_error("disk full");
+  });
+  CHECK(failed.status == RunEnd::Status::kFailed);
+  CHECK(std::string(failed.statusName()) == "failed");
+  CHECK(failed.message == "disk full");
+  CHECK(failed.steps == 3);
+}
