@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cfloat>
 #include <cmath>
+#include <initializer_list>
 #include <vector>
 
 #include "scene/scene_json.h"
@@ -46,6 +47,16 @@ bool sinkOutline(const View& view, const Sink& k, std::vector<ImVec2>& outline) 
       outline.push_back(imvec(q));
     }
   return true;
+}
+
+// One radio button a choice, on one line; returns the index chosen.
+int radioRow(int value, std::initializer_list<const char*> labels) {
+  int k = 0;
+  for (const char* label : labels) {
+    if (k > 0) ImGui::SameLine();
+    ImGui::RadioButton(label, &value, k++);
+  }
+  return value;
 }
 
 void plot(const char* name, const std::deque<float>& q) {
@@ -259,28 +270,18 @@ void displayPanel(PanelState& state, float windowWidth) {
   ImGui::SetNextWindowPos({windowWidth - 330, 10}, ImGuiCond_FirstUseEver);
   ImGui::SetNextWindowSize({320, 0}, ImGuiCond_FirstUseEver);
   ImGui::Begin("Display");
-  int mode = int(settings.terrain);
-  ImGui::RadioButton("shaded", &mode, 0);
-  ImGui::SameLine();
-  ImGui::RadioButton("erosion", &mode, 1);
-  ImGui::SameLine();
-  ImGui::RadioButton("sediment", &mode, 2);
-  settings.terrain = RenderSettings::Terrain(mode);
+  settings.terrain =
+      RenderSettings::Terrain(radioRow(int(settings.terrain), {"shaded", "erosion", "sediment"}));
   ImGui::Checkbox("water surface", &settings.water);
   ImGui::Checkbox("reflections", &settings.reflections);
   ImGui::SameLine();
   ImGui::Checkbox("refraction", &settings.refraction);
   ImGui::SameLine();
   ImGui::Checkbox("caustics", &settings.caustics);
-  int particles = int(settings.particles);
   ImGui::Text("particles:");
   ImGui::SameLine();
-  ImGui::RadioButton("off", &particles, 0);
-  ImGui::SameLine();
-  ImGui::RadioButton("C", &particles, 1);
-  ImGui::SameLine();
-  ImGui::RadioButton("speed", &particles, 2);
-  settings.particles = RenderSettings::Particles(particles);
+  settings.particles =
+      RenderSettings::Particles(radioRow(int(settings.particles), {"off", "C", "speed"}));
   ImGui::TextDisabled(
       "left drag: orbit, right drag: pan, wheel: zoom;\ndrag a source's marker to move it");
   ImGui::End();

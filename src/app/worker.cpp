@@ -52,6 +52,16 @@ void SimulationWorker::rebuild() {
   ++generation_;
 }
 
+void SimulationWorker::adopt(std::unique_ptr<World> next, const SceneSpec& spec) {
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    spec_ = spec;
+  }
+  world_ = std::move(next);
+  worldEffects_ = spec.effects;
+  ++generation_;
+}
+
 void SimulationWorker::restore(int id) {
   auto it =
       std::find_if(kept_.begin(), kept_.end(), [&](const Kept& k) { return k.info.id == id; });
@@ -66,13 +76,7 @@ void SimulationWorker::restore(int id) {
   auto next = std::make_unique<World>(buildScene(spec).desc);
   std::istringstream in(it->state);
   next->loadState(in);
-  {
-    std::lock_guard<std::mutex> lock(mutex_);
-    spec_ = spec;
-  }
-  world_ = std::move(next);
-  worldEffects_ = spec.effects;
-  ++generation_;
+  adopt(std::move(next), spec);
   error_.clear();
   notice_ = "restored snapshot " + std::to_string(id) + " (t = " + std::to_string(it->info.time) +
             " s, step " + std::to_string(it->info.step) + ")";
@@ -213,13 +217,7 @@ void SimulationWorker::apply(SimCommand& c) {
 // A new scene: a bad one throws before anything changes.
 void SimulationWorker::load(const SceneSpec& spec) {
   auto next = std::make_unique<World>(buildScene(spec).desc);  // a bad scene throws here
-  {
-    std::lock_guard<std::mutex> lock(mutex_);
-    spec_ = spec;
-  }
-  world_ = std::move(next);
-  worldEffects_ = spec.effects;
-  ++generation_;
+  adopt(std::move(next), spec);
   error_.clear();
   if (!kept_.empty()) notice_ = "a new scene: its snapshots start afresh";
   kept_.clear();
@@ -245,13 +243,7 @@ void SimulationWorker::save(const cmd::Save& sv) {
 void SimulationWorker::resume(const std::string& path) {
   Scene scene;
   auto next = std::make_unique<World>(resumeWorld(readCheckpoint(path), scene));
-  {
-    std::lock_guard<std::mutex> lock(mutex_);
-    spec_ = scene.spec;
-  }
-  world_ = std::move(next);
-  worldEffects_ = scene.spec.effects;
-  ++generation_;
+  adopt(std::move(next), scene.spec);
   notice_ = "resumed " + path + " at step " + std::to_string(world_->steps());
   kept_.clear();  // a checkpoint may be of another scene
 }

@@ -111,6 +111,8 @@ class SimulationWorker {
   void publish(double stepsPerSecond);
   void rebuild();
   void restore(int id);
+  /// Runs `next` from now on, with the scene it was built from (a load, a resume, a restore).
+  void adopt(std::unique_ptr<World> next, const SceneSpec& spec);
   void load(const SceneSpec& spec);
   void save(const cmd::Save& save);
   void resume(const std::string& checkpoint);

@@ -155,6 +155,87 @@ class Fields {
 
 constexpr double kBig = 1e6;  // metres: larger extents are surely a typo
 
+// The number fields of the scene's structs, declared once: the reader and the writer both go
+// through these tables, and a field left out of a file keeps its struct's default. `only`: a
+// terrain field that belongs to one kind.
+template <class S>
+struct Real {
+  const char* key;
+  double S::*member;
+  double lo, hi;
+  bool required = false;
+  const char* only = nullptr;
+};
+template <class S>
+struct Whole {
+  const char* key;
+  int S::*member;
+  long long lo, hi;
+  const char* only = nullptr;
+};
+
+const std::vector<Real<TerrainSpec>>& terrainReals() {
+  using T = TerrainSpec;
+  static const std::vector<Real<T>> fields = {
+      {"length_x", &T::length_x, 1e-6, kBig},   {"length_z", &T::length_z, 1e-6, kBig},
+      {"cell", &T::cell, 1e-6, kBig},           {"slope", &T::slope, -100, 100},
+      {"side_rise", &T::side_rise, -kBig, kBig}, {"amplitude", &T::amplitude, -kBig, kBig},
+      {"base", &T::base, -kBig, kBig},          {"riser", &T::riser, 0.01, 1.0, false, "terraces"},
+      {"rim", &T::rim, 0.05, 1.0, false, "bowl"}};
+  return fields;
+}
+const std::vector<Whole<TerrainSpec>>& terrainWholes() {
+  static const std::vector<Whole<TerrainSpec>> fields = {
+      {"levels", &TerrainSpec::levels, 1, 1000, "terraces"}};
+  return fields;
+}
+const std::vector<Real<NoiseSpec>>& noiseReals() {
+  static const std::vector<Real<NoiseSpec>> fields = {
+      {"amplitude", &NoiseSpec::amplitude, -kBig, kBig, true},
+      {"feature", &NoiseSpec::feature, 1e-6, kBig}};
+  return fields;
+}
+const std::vector<Whole<NoiseSpec>>& noiseWholes() {
+  static const std::vector<Whole<NoiseSpec>> fields = {
+      {"octaves", &NoiseSpec::octaves, 1, 16}, {"seed", &NoiseSpec::seed, 0, 2147483647}};
+  return fields;
+}
+// (A source's and a rain's `stop` may be null, and comes after `start`: read apart.)
+const std::vector<Real<Source>>& sourceReals() {
+  static const std::vector<Real<Source>> fields = {{"radius", &Source::radius, 1e-9, kBig, true},
+                                                   {"rate", &Source::rate, 1e-12, 1e6, true},
+                                                   {"start", &Source::start, 0, 1e9}};
+  return fields;
+}
+const std::vector<Real<Rain>>& rainReals() {
+  static const std::vector<Real<Rain>> fields = {
+      {"intensity_mm_h", &Rain::intensity_mm_h, 1e-6, 1e7, true},
+      {"drop_height", &Rain::drop_height, 0, kBig},
+      {"drop_speed", &Rain::drop_speed, 0, 1e3},
+      {"start", &Rain::start, 0, 1e9}};
+  return fields;
+}
+
+bool belongs(const char* only, const std::string& kind) { return !only || kind == only; }
+
+template <class S>
+void readFields(Fields& f, S& s, const std::vector<Real<S>>& reals,
+                const std::vector<Whole<S>>& wholes = {}, const std::string& kind = "") {
+  for (const Real<S>& r : reals)
+    if (belongs(r.only, kind)) s.*r.member = f.number(r.key, s.*r.member, r.lo, r.hi, r.required);
+  for (const Whole<S>& w : wholes)
+    if (belongs(w.only, kind)) s.*w.member = int(f.integer(w.key, s.*w.member, w.lo, w.hi));
+}
+
+template <class S>
+void writeFields(json& j, const S& s, const std::vector<Real<S>>& reals,
+                 const std::vector<Whole<S>>& wholes = {}, const std::string& kind = "") {
+  for (const Real<S>& f : reals)
+    if (belongs(f.only, kind)) j[f.key] = s.*f.member;
+  for (const Whole<S>& f : wholes)
+    if (belongs(f.only, kind)) j[f.key] = s.*f.member;
+}
+
 const std::vector<std::string>& scalingRules() {
   static const std::vector<std::string> names = {"spacing", "fixed", "column", "pool"};
   return names;
@@ -237,21 +318,9 @@ json specToJson(const SceneSpec& s) {
   j["description"] = s.description;
   j["params"] = paramsToJson(s.params);
   const TerrainSpec& t = s.terrain;
-  j["terrain"] = {{"kind", t.kind},
-                  {"length_x", t.length_x},
-                  {"length_z", t.length_z},
-                  {"cell", t.cell},
-                  {"slope", t.slope},
-                  {"side_rise", t.side_rise},
-                  {"amplitude", t.amplitude},
-                  {"base", t.base}};
-  if (t.kind == "terraces") j["terrain"]["levels"] = t.levels, j["terrain"]["riser"] = t.riser;
-  if (t.kind == "bowl") j["terrain"]["rim"] = t.rim;
-  if (t.noise.amplitude != 0)
-    j["terrain"]["noise"] = {{"amplitude", t.noise.amplitude},
-                             {"feature", t.noise.feature},
-                             {"octaves", t.noise.octaves},
-                             {"seed", t.noise.seed}};
+  j["terrain"] = {{"kind", t.kind}};
+  writeFields(j["terrain"], t, terrainReals(), terrainWholes(), t.kind);
+  if (t.noise.amplitude != 0) writeFields(j["terrain"]["noise"], t.noise, noiseReals(), noiseWholes());
   if (t.kind == "heightmap") {
     j["terrain"]["file"] = t.file;
     j["terrain"]["height_min"] = t.height_min;
@@ -276,26 +345,27 @@ json specToJson(const SceneSpec& s) {
   j["water"] = {{"blocks", blocks}, {"sediment", marks}};
   json sources = json::array();
   for (const Source& src : s.sources)
-    sources.push_back({{"position", vec(src.center)},
-                       {"radius", src.radius},
-                       {"direction", vec(src.direction)},
-                       {"rate", src.rate},
-                       {"start", src.start},
-                       {"stop", std::isfinite(src.stop) ? json(src.stop) : json(nullptr)}});
+  {
+    json js = {{"position", vec(src.center)},
+               {"direction", vec(src.direction)},
+               {"stop", std::isfinite(src.stop) ? json(src.stop) : json(nullptr)}};
+    writeFields(js, src, sourceReals());
+    sources.push_back(js);
+  }
   j["sources"] = sources;
   json sinks = json::array();
   for (const Sink& k : s.sinks) sinks.push_back({{"min", vec(k.lo)}, {"max", vec(k.hi)}});
   j["sinks"] = sinks;
   json rain = json::array();
   for (const Rain& r : s.rain)
-    rain.push_back({{"min", {r.lo_x, r.lo_z}},
-                    {"max", {r.hi_x, r.hi_z}},
-                    {"intensity_mm_h", r.intensity_mm_h},
-                    {"drop_height", r.drop_height},
-                    {"drop_speed", r.drop_speed},
-                    {"start", r.start},
-                    {"stop", std::isfinite(r.stop) ? json(r.stop) : json(nullptr)},
-                    {"seed", r.seed}});
+  {
+    json jr = {{"min", {r.lo_x, r.lo_z}},
+               {"max", {r.hi_x, r.hi_z}},
+               {"stop", std::isfinite(r.stop) ? json(r.stop) : json(nullptr)},
+               {"seed", r.seed}};
+    writeFields(jr, r, rainReals());
+    rain.push_back(jr);
+  }
   j["rain"] = rain;
   if (s.has_camera) j["camera"] = {{"eye", vec(s.camera_eye)}, {"target", vec(s.camera_target)}};
   j["scaling"] = scalingToJson(s.scaling);
@@ -330,7 +400,7 @@ SceneSpec specFromJson(const json& j, const std::string& file) {
   Fields top(j, "", file);
   const double version = top.number("version", 0, 1, 1, true);
   (void)version;
-  s.name = top.text("name", "scene");
+  s.name = top.text("name", "scene");  // a file without one: "scene" (SceneSpec's is empty)
   s.description = top.text("description", "");
   if (top.has("params")) {
     Fields groups(top.raw("params"), "params", file);
@@ -370,25 +440,11 @@ SceneSpec specFromJson(const json& j, const std::string& file) {
   {
     const json terrain = top.has("terrain") ? top.raw("terrain") : json::object();
     Fields t(terrain, "terrain", file);
-    s.terrain.kind = t.text("kind", "flat", terrainKinds());
-    s.terrain.length_x = t.number("length_x", 1.0, 1e-6, kBig);
-    s.terrain.length_z = t.number("length_z", 1.0, 1e-6, kBig);
-    s.terrain.cell = t.number("cell", 0.05, 1e-6, kBig);
-    s.terrain.slope = t.number("slope", 0.0, -100, 100);
-    s.terrain.side_rise = t.number("side_rise", 0.0, -kBig, kBig);
-    s.terrain.amplitude = t.number("amplitude", 0.0, -kBig, kBig);
-    s.terrain.base = t.number("base", 0.0, -kBig, kBig);
-    if (s.terrain.kind == "terraces") {
-      s.terrain.levels = int(t.integer("levels", 3, 1, 1000));
-      s.terrain.riser = t.number("riser", 0.15, 0.01, 1.0);
-    }
-    if (s.terrain.kind == "bowl") s.terrain.rim = t.number("rim", 0.8, 0.05, 1.0);
+    s.terrain.kind = t.text("kind", s.terrain.kind, terrainKinds());
+    readFields(t, s.terrain, terrainReals(), terrainWholes(), s.terrain.kind);
     if (t.has("noise")) {
       Fields n(t.raw("noise"), "terrain.noise", file);
-      s.terrain.noise.amplitude = n.number("amplitude", 0.0, -kBig, kBig, true);
-      s.terrain.noise.feature = n.number("feature", 1.0, 1e-6, kBig);
-      s.terrain.noise.octaves = int(n.integer("octaves", 4, 1, 16));
-      s.terrain.noise.seed = int(n.integer("seed", 1, 0, 2147483647));
+      readFields(n, s.terrain.noise, noiseReals(), noiseWholes());
       n.finish();
     }
     if (s.terrain.kind == "heightmap") {
@@ -402,8 +458,8 @@ SceneSpec specFromJson(const json& j, const std::string& file) {
         if (p.is_relative()) p = std::filesystem::path(file).parent_path() / p;
         s.terrain.file = std::filesystem::absolute(p).lexically_normal().string();
       }
-      s.terrain.height_min = t.number("height_min", 0.0, -kBig, kBig);
-      s.terrain.height_max = t.number("height_max", 1.0, s.terrain.height_min, kBig);
+      s.terrain.height_min = t.number("height_min", s.terrain.height_min, -kBig, kBig);
+      s.terrain.height_max = t.number("height_max", s.terrain.height_max, s.terrain.height_min, kBig);
       if (t.has("crop")) {
         const json& c = t.raw("crop");
         if (!c.is_array() || c.size() != 4) t.fail("terrain.crop", "[x, z, width, height] in pixels", c);
@@ -428,7 +484,7 @@ SceneSpec specFromJson(const json& j, const std::string& file) {
   }
   if (top.has("domain")) {
     Fields d(top.raw("domain"), "domain", file);
-    s.domain.walls = d.boolean("walls", true);
+    s.domain.walls = d.boolean("walls", s.domain.walls);
     d.finish();
   }
   if (top.has("effects")) {
@@ -485,12 +541,10 @@ SceneSpec specFromJson(const json& j, const std::string& file) {
     Fields f(sources[k], "sources[" + std::to_string(k) + "]", file);
     Source src;
     src.center = f.vec3("position");
-    src.radius = f.number("radius", 0, 1e-9, kBig, true);
     src.direction = f.vec3("direction");
     if (src.direction.norm() == 0)
       throw SceneError(file + ": " + f.at("direction") + ": must not be the zero vector");
-    src.rate = f.number("rate", 0, 1e-12, 1e6, true);
-    src.start = f.number("start", 0, 0, 1e9);
+    readFields(f, src, sourceReals());
     if (f.has("stop") && !f.raw("stop").is_null())
       src.stop = f.number("stop", 0, src.start, 1e9);
     f.finish();
@@ -513,12 +567,9 @@ SceneSpec specFromJson(const json& j, const std::string& file) {
     r.lo_x = lo[0], r.lo_z = lo[1], r.hi_x = hi[0], r.hi_z = hi[1];
     if (!(r.hi_x > r.lo_x && r.hi_z > r.lo_z))
       throw SceneError(file + ": " + f.at("max") + ": must exceed min on both axes (x, z)");
-    r.intensity_mm_h = f.number("intensity_mm_h", 0, 1e-6, 1e7, true);
-    r.drop_height = f.number("drop_height", 0.1, 0, kBig);
-    r.drop_speed = f.number("drop_speed", 1.0, 0, 1e3);
-    r.start = f.number("start", 0, 0, 1e9);
+    readFields(f, r, rainReals());
     if (f.has("stop") && !f.raw("stop").is_null()) r.stop = f.number("stop", 0, r.start, 1e9);
-    r.seed = uint64_t(f.integer("seed", 1, 0, 9007199254740991LL));
+    r.seed = uint64_t(f.integer("seed", (long long)r.seed, 0, 9007199254740991LL));
     f.finish();
     s.rain.push_back(r);
   }
