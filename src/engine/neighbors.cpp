@@ -255,4 +255,44 @@ size_t NeighborLists::bytes() const {
   return s;
 }
 
+void Neighborhood::buildFluid(const std::vector<Vec3f>& x, float h, NeighborSearch method) {
+  if (method == NeighborSearch::kKdTree) {
+    // The paper's kd-tree, rebuilt every step; the same sets as the grid, in ascending index.
+    fluidTree_.build(x);
+    fluid_.build(fluidTree_, x, h, true);
+    gridStale_ = true;
+    return;
+  }
+  grid_.build(x, h);
+  fluid_.build(grid_, x, x, grid_.start(), grid_.sorted(), h, true);
+  gridStale_ = false;
+}
+
+void Neighborhood::buildBoundary(const std::vector<Vec3f>& fluid,
+                                 const std::vector<Vec3f>& boundary, float h,
+                                 NeighborSearch method) {
+  if (method == NeighborSearch::kKdTree) {
+    boundaryTree_.build(boundary);
+    boundary_.build(boundaryTree_, fluid, h, false);
+    return;
+  }
+  grid_.binOther(boundary, boundaryStart_, boundarySorted_);
+  boundary_.build(grid_, fluid, boundary, boundaryStart_, boundarySorted_, h, false);
+}
+
+const Grid& Neighborhood::placementGrid(const std::vector<Vec3f>& x, float h) {
+  if (gridStale_) grid_.build(x, h), gridStale_ = false;
+  return grid_;
+}
+
+const Grid& Neighborhood::rebuildGrid(const std::vector<Vec3f>& x, float h) {
+  grid_.build(x, h);
+  return grid_;
+}
+
+size_t Neighborhood::bytes() const {
+  return grid_.bytes() + fluidTree_.bytes() + boundaryTree_.bytes() + fluid_.bytes() +
+         boundary_.bytes() + (boundaryStart_.capacity() + boundarySorted_.capacity()) * sizeof(uint32_t);
+}
+
 }  // namespace scour

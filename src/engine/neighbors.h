@@ -22,6 +22,8 @@
 #include <memory>
 #include <vector>
 
+#include "engine/params.h"
+
 namespace scour {
 
 using Vec3f = Eigen::Vector3f;
@@ -150,6 +152,35 @@ inline void forEachNeighbor(const NeighborLists& n, const std::vector<Vec3f>& x,
     f(j, xij, xij.norm());
   }
 }
+
+/// The World's neighbor search: the uniform grid (or the paper's kd-trees, as
+/// engine.neighbor_search says) and the fluid–fluid and fluid–boundary lists every pass shares.
+/// Rebuilt every step from the particles; nothing of it is saved with a world state.
+class Neighborhood {
+ public:
+  /// The fluid–fluid lists of the particles at x, within h.
+  void buildFluid(const std::vector<Vec3f>& x, float h, NeighborSearch method);
+  /// The fluid–boundary lists, after buildFluid on the same fluid.
+  void buildBoundary(const std::vector<Vec3f>& fluid, const std::vector<Vec3f>& boundary, float h,
+                     NeighborSearch method);
+  /// The grid over the particles of the last search (placement looks up its cells; the Z-order
+  /// reorder sorts by it). In kd-tree mode it is built here, on demand, over x.
+  const Grid& placementGrid(const std::vector<Vec3f>& x, float h);
+  /// The grid built anew over x (the Z-order reorder).
+  const Grid& rebuildGrid(const std::vector<Vec3f>& x, float h);
+
+  const NeighborLists& fluid() const { return fluid_; }
+  const NeighborLists& boundary() const { return boundary_; }
+  size_t bytes() const;
+
+ private:
+  Grid grid_;
+  /// kd-tree mode: the grid is built on demand for placement and the Z-order, not by the search.
+  bool gridStale_ = false;
+  KdTree fluidTree_, boundaryTree_;
+  NeighborLists fluid_, boundary_;
+  std::vector<uint32_t> boundaryStart_, boundarySorted_;  ///< the boundary particles binned
+};
 
 /// A fixed partition of [0, n) into `parts` ranges, independent of the thread count.
 inline size_t blockBegin(size_t n, size_t parts, size_t b) { return n * b / parts; }

@@ -78,7 +78,6 @@ World::World(WorldDesc d)
       terrain_(std::move(d.terrain)),
       domain_(d.domain),
       effects_(d.effects),
-      sinks_(std::move(d.sinks)),
       sampler_(terrain_, params_.spacing) {
   std::string bad = validateParams(d.params);
   require(bad.empty(), bad);
@@ -92,12 +91,13 @@ World::World(WorldDesc d)
   terrainReference_ = terrain_.minHeight();
   accumulator_.resize(terrain_.triangleCount());
   require(double(terrain_.heights().size()) <= Limits::kMaxTerrainVertices, "terrain: more vertices than the limit");
-  maxParticles_ = size_t(particleCapacity(double(terrain_.heights().size())));
-  require(d.particles.size() <= maxParticles_, "particles: more than the memory limit allows");
+  supply_.maxParticles = size_t(particleCapacity(double(terrain_.heights().size())));
+  require(d.particles.size() <= supply_.maxParticles, "particles: more than the memory limit allows");
   simulationBox();
+  supply_.sinks = std::move(d.sinks);
   for (size_t s = 0; s < d.sources.size(); ++s)
-    emitters_.push_back(makeEmitter(d.sources[s], params_, "sources[" + std::to_string(s) + "]"));
-  for (size_t s = 0; s < sinks_.size(); ++s) validateSink(sinks_[s], "sinks[" + std::to_string(s) + "]");
+    supply_.emitters.push_back(makeEmitter(d.sources[s], params_, "sources[" + std::to_string(s) + "]"));
+  for (size_t s = 0; s < supply_.sinks.size(); ++s) validateSink(supply_.sinks[s], "sinks[" + std::to_string(s) + "]");
   for (size_t r = 0; r < d.rain.size(); ++r) {
     const Rain& rn = d.rain[r];
     std::string at = "rain[" + std::to_string(r) + "]";
@@ -112,7 +112,7 @@ World::World(WorldDesc d)
     require(rainArea(rn) > 0, at + ": the rectangle does not overlap the terrain");
     const std::string bad = checkRainWork(rn, rainArea(rn), params_, at);
     require(bad.empty(), bad);
-    rain_.push_back(RainState{rn, 0.0, 0, 0, 0});
+    supply_.rain.push_back(RainState{rn, 0.0, 0, 0, 0});
   }
   require(d.pressure.empty() || d.pressure.size() == d.particles.size(),
           "pressure: one value per particle expected");
@@ -120,7 +120,7 @@ World::World(WorldDesc d)
     require(d.particles[i].allFinite(), "particles: positions must be finite");
     double p0 = d.pressure.empty() ? 0.0 : d.pressure[i];
     require(std::isfinite(p0) && p0 >= 0, "pressure: must be finite and ≥ 0");
-    fluid_.push(d.particles[i], Vec3f::Zero(), nextId_++, float(sph_.densityFor(p0)));
+    fluid_.push(d.particles[i], Vec3f::Zero(), supply_.nextId++, float(sph_.densityFor(p0)));
   }
   require(d.concentration.empty() || d.concentration.size() == d.particles.size(),
           "concentration: one value per particle expected");
@@ -129,14 +129,14 @@ World::World(WorldDesc d)
     require(std::isfinite(c) && c >= 0 && c <= params_.c_max, "concentration: must lie in [0, c_max]");
     fluid_.sed[i] = c * sediment_.volume;
   }
-  initialSoil_ = soilBudget().total();
-  energyLedger_ = mechanicalEnergy();
+  ledger_.initialSoil = soilBudget().total();
+  ledger_.energy = mechanicalEnergy();
   for (size_t i = 0; i < fluid_.size(); ++i) {
     const double c = fluid_.sed[i] / sediment_.volume;
-    invariants_.c_min = i == 0 ? c : std::min(invariants_.c_min, c);
-    invariants_.c_max = i == 0 ? c : std::max(invariants_.c_max, c);
+    ledger_.invariants.c_min = i == 0 ? c : std::min(ledger_.invariants.c_min, c);
+    ledger_.invariants.c_max = i == 0 ? c : std::max(ledger_.invariants.c_max, c);
   }
-  defects_.c_min_raw = invariants_.c_min, defects_.c_max_raw = invariants_.c_max;
+  ledger_.defects.c_min_raw = ledger_.invariants.c_min, ledger_.defects.c_max_raw = ledger_.invariants.c_max;
   searchNeighbors();
   if (effects_.fluid_motion) computeAccelerations();  // frozen fluid: no SPH pass ever runs
 }
@@ -177,32 +177,11 @@ void World::searchNeighbors() {
 }
 
 void World::buildFluidLists() {
-  if (params_.neighbor_search == NeighborSearch::kKdTree) {
-    // The paper's kd-tree, rebuilt every step; the same sets as the grid, in ascending index.
-    fluidTree_.build(fluid_.x);
-    fluidNeighbors_.build(fluidTree_, fluid_.x, float(sph_.h), true);
-    gridStale_ = true;
-    return;
-  }
-  grid_.build(fluid_.x, float(sph_.h));
-  fluidNeighbors_.build(grid_, fluid_.x, fluid_.x, grid_.start(), grid_.sorted(), float(sph_.h), true);
-  gridStale_ = false;
+  neighbors_.buildFluid(fluid_.x, float(sph_.h), params_.neighbor_search);
 }
 
 void World::buildBoundaryLists() {
-  if (params_.neighbor_search == NeighborSearch::kKdTree) {
-    boundaryTree_.build(boundary_.x);
-    boundaryNeighbors_.build(boundaryTree_, fluid_.x, float(sph_.h), false);
-    return;
-  }
-  grid_.binOther(boundary_.x, boundaryStart_, boundarySorted_);
-  boundaryNeighbors_.build(grid_, fluid_.x, boundary_.x, boundaryStart_, boundarySorted_, float(sph_.h), false);
-}
-
-void World::ensurePlacementGrid() {
-  if (!gridStale_) return;
-  grid_.build(fluid_.x, float(sph_.h));
-  gridStale_ = false;
+  neighbors_.buildBoundary(fluid_.x, boundary_.x, float(sph_.h), params_.neighbor_search);
 }
 
 void World::computeAccelerations() {
@@ -210,14 +189,14 @@ void World::computeAccelerations() {
   timed(Pass::kDensity, [&] {
     if (sph_.continuity)
       // fluid_.v holds v(t + Δt/2) here
-      densityRate_ = integrateDensity(sph_, fluidNeighbors_, wall_.of(terrain_), domain_, fluid_.v, dt_, fluid_);
+      densityRate_ = integrateDensity(sph_, neighbors_.fluid(), wall_.of(terrain_), domain_, fluid_.v, dt_, fluid_);
     else
       // No continuity rate to bound Δt.
-      computeDensity(sph_, fluidNeighbors_, wall_.of(terrain_), domain_, fluid_), densityRate_ = 0;
+      computeDensity(sph_, neighbors_.fluid(), wall_.of(terrain_), domain_, fluid_), densityRate_ = 0;
   });
-  timed(Pass::kForces, [&] { computeForces(sph_, fluidNeighbors_, vhat_, fluid_); });
+  timed(Pass::kForces, [&] { computeForces(sph_, neighbors_.fluid(), vhat_, fluid_); });
   timed(Pass::kBoundaryForces, [&] { applyBoundaryForces(sph_, wall_.of(terrain_), domain_, vhat_, fluid_); });
-  if (effects_.no_slip) timed(Pass::kNoSlip, [&] { applyNoSlip(sph_, boundaryNeighbors_, boundary_, vhat_, fluid_); });
+  if (effects_.no_slip) timed(Pass::kNoSlip, [&] { applyNoSlip(sph_, neighbors_.boundary(), boundary_, vhat_, fluid_); });
 }
 
 void World::simulationBox() {
@@ -231,17 +210,17 @@ void World::sedimentWork() {
   SedimentEffects sfx{effects_.settling, effects_.diffusion, effects_.deposition, effects_.erosion};
   if (sfx.settling || sfx.diffusion || sfx.deposition) {
     timed(Pass::kSediment, [&] {
-      transferSediment(sediment_, sfx, fluidNeighbors_, boundaryNeighbors_, boundary_, dt_, fluid_, accumulator_, sedimentWork_);
+      transferSediment(sediment_, sfx, neighbors_.fluid(), neighbors_.boundary(), boundary_, dt_, fluid_, accumulator_, sedimentWork_);
       const SedimentDefects& d = sedimentWork_.defects;
       if (sediment_.advection == SettlingAdvection::kNaiveGradient && sfx.settling && fluid_.size() > 0) {
-        defects_.created += d.created;
-        defects_.clipped += d.clipped;
-        defects_.c_min_raw = std::min(defects_.c_min_raw, d.c_min_raw);
-        defects_.c_max_raw = std::max(defects_.c_max_raw, d.c_max_raw);
+        ledger_.defects.created += d.created;
+        ledger_.defects.clipped += d.clipped;
+        ledger_.defects.c_min_raw = std::min(ledger_.defects.c_min_raw, d.c_min_raw);
+        ledger_.defects.c_max_raw = std::max(ledger_.defects.c_max_raw, d.c_max_raw);
       }
     });
   }
-  if (sfx.erosion) timed(Pass::kErosion, [&] { erode(sediment_, boundaryNeighbors_, boundary_, dt_, fluid_, accumulator_); });
+  if (sfx.erosion) timed(Pass::kErosion, [&] { erode(sediment_, neighbors_.boundary(), boundary_, dt_, fluid_, accumulator_); });
   if (sfx.erosion || sfx.deposition) {
     timed(Pass::kTerrain, [&] {
       std::vector<int> moved = applyTerrainChange(terrain_, vertexArea_, accumulator_);
@@ -267,17 +246,17 @@ void World::setParams(const SimParams& q) {
   if (q.gravity != params_.gravity) {
     double sumY = 0;
     for (const Vec3f& x : fluid_.x) sumY += double(x.y());
-    energyLedger_ += sph_.mass * (q.gravity - params_.gravity) * sumY;
+    ledger_.energy += sph_.mass * (q.gravity - params_.gravity) * sumY;
   }
   // A longer step places more per step: the sources and rain are checked against the limits.
-  for (size_t i = 0; i < emitters_.size(); ++i) {
+  for (size_t i = 0; i < supply_.emitters.size(); ++i) {
     const std::string at = "sources[" + std::to_string(i) + "]";
-    const std::string bad = checkSourceWork(emitters_[i].src, q, at);
+    const std::string bad = checkSourceWork(supply_.emitters[i].src, q, at);
     require(bad.empty(), bad);
   }
-  for (size_t r = 0; r < rain_.size(); ++r) {
+  for (size_t r = 0; r < supply_.rain.size(); ++r) {
     const std::string at = "rain[" + std::to_string(r) + "]";
-    const std::string bad = checkRainWork(rain_[r].rain, rainArea(rain_[r].rain), q, at);
+    const std::string bad = checkRainWork(supply_.rain[r].rain, rainArea(supply_.rain[r].rain), q, at);
     require(bad.empty(), bad);
   }
   params_ = resolve(q);
@@ -322,8 +301,7 @@ StepStats World::step() {
   if (moved) {
     if (params_.reorder_every > 0 && step_ % params_.reorder_every == 0) {
       timed(Pass::kNeighborSearch, [&] {
-        grid_.build(fluid_.x, float(sph_.h));
-        fluid_.gather(grid_.zOrder(fluid_.x));
+        fluid_.gather(neighbors_.rebuildGrid(fluid_.x, float(sph_.h)).zOrder(fluid_.x));
       });
     }
     searchNeighbors();

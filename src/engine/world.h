@@ -99,6 +99,40 @@ class LimitExceeded : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+/// What a World has counted since it began: particles placed and removed, the soil removed, the
+/// energy given, what a non-conservative form made, the worst invariant values. It saves and
+/// loads itself with the world state (world_state.cpp), all but `initialSoil` (the World's
+/// construction sets it) and `energy` (counted again from a loaded state).
+struct Ledger {
+  long removedBySinks = 0, removedByOutflow = 0;
+  long emitted = 0;  ///< by sources and rain
+  long painted = 0;  ///< by the brush
+  double removedSediment = 0;  ///< carried out by sinks and open walls [m³]
+  double initialSoil = 0;      ///< the soil budget's total at the start [m³]
+  double energy = 0;           ///< the mechanical energy given to the fluid [J] (energyLedger)
+  SedimentDefects defects;
+  InvariantReport invariants;
+
+  void save(std::ostream& out) const;
+  /// `version`: of the world state being read (defects from version 2 on).
+  void load(std::istream& in, uint32_t version);
+};
+
+/// The World's particle supply: the sources (with their progress), sinks and rain, the id the
+/// next particle gets, and the room the memory limit leaves. It saves and loads its progress
+/// with the world state (world_state.cpp; the next id is saved with the clock).
+struct Supply {
+  std::vector<Emitter> emitters;
+  std::vector<Sink> sinks;
+  std::vector<RainState> rain;
+  uint32_t nextId = 0;
+  size_t maxParticles = 0;  ///< particles the memory limit leaves room for (engine/limits.h)
+
+  void saveProgress(std::ostream& out) const;
+  /// Throws std::runtime_error, changing nothing, when the state's sources or rain are not these.
+  void loadProgress(std::istream& in);
+};
+
 struct StepStats {
   double dt = 0, time = 0, max_speed = 0;
   size_t particles = 0;
@@ -140,7 +174,7 @@ class World {
   /// Changes a source's place, direction, radius, rate or times; its progress restarts.
   void updateSource(size_t i, const Source& s);
   void removeSource(size_t i);
-  const std::vector<Sink>& sinks() const { return sinks_; }
+  const std::vector<Sink>& sinks() const { return supply_.sinks; }
   size_t addSink(const Sink& s);
   /// Changes a sink's box (validated as in addSink); what it removed so far stays counted.
   void updateSink(size_t i, const Sink& s);
@@ -153,7 +187,7 @@ class World {
   const Heightfield& terrain() const { return terrain_; }
   const Fluid& fluid() const { return fluid_; }
   const BoundaryParticles& boundary() const { return boundary_; }
-  const NeighborLists& neighbors() const { return fluidNeighbors_; }
+  const NeighborLists& neighbors() const { return neighbors_.fluid(); }
   const Domain& domain() const { return domain_; }
   double time() const { return time_; }
   long steps() const { return step_; }
@@ -162,11 +196,11 @@ class World {
   /// Seconds spent in each pass, and how often it ran, since construction.
   const std::array<double, size_t(Pass::kCount)>& passSeconds() const { return passSeconds_; }
   const std::array<long, size_t(Pass::kCount)>& passCalls() const { return passCalls_; }
-  const InvariantReport& invariants() const { return invariants_; }
-  long removedBySinks() const { return removedSinks_; }
-  long removedByOutflow() const { return removedOutflow_; }
-  long emitted() const { return emittedTotal_; }
-  long painted() const { return paintedTotal_; }
+  const InvariantReport& invariants() const { return ledger_.invariants; }
+  long removedBySinks() const { return ledger_.removedBySinks; }
+  long removedByOutflow() const { return ledger_.removedByOutflow; }
+  long emitted() const { return ledger_.emitted; }
+  long painted() const { return ledger_.painted; }
   long blockedSlots() const;
   /// Mechanical energy of the fluid now, Σ m (½|v|² + g y) [J].
   double mechanicalEnergy() const;
@@ -174,7 +208,7 @@ class World {
   /// particle placed since (sources, rain, brush) minus that of every particle removed (sinks,
   /// open walls) [J]. Without dissipation mechanicalEnergy() would equal it; it may only fall
   /// below. Not part of saveState: after loadState it counts from the loaded state.
-  double energyLedger() const { return energyLedger_; }
+  double energyLedger() const { return ledger_.energy; }
   /// max |dρ/dt|/ρ of the last step (continuity density), which bounds the next Δt [1/s].
   double densityRate() const { return densityRate_; }
 
@@ -188,7 +222,7 @@ class World {
   /// What the naive advection (sediment.advection = naive_gradient) made or destroyed since the
   /// start, and the extreme C before the clamp (from the initial range on). With the conservative
   /// forms the volumes stay 0 and the C range is the initial one.
-  const SedimentDefects& sedimentDefects() const { return defects_; }
+  const SedimentDefects& sedimentDefects() const { return ledger_.defects; }
   /// Sediment concentration C of particle i.
   double concentration(size_t i) const { return fluid_.sed[i] / sediment_.volume; }
 
@@ -212,8 +246,6 @@ class World {
   void buildFluidLists();
   /// The fluid–boundary lists, after buildFluidLists.
   void buildBoundaryLists();
-  /// Makes grid_ index the particles as they are now if the last search did not (kd-tree mode).
-  void ensurePlacementGrid();
   void computeAccelerations();
   void removeParticles();
   void emit();
@@ -232,8 +264,6 @@ class World {
   /// particle outside it has been flung out by a blow-up (checkInvariants).
   void simulationBox();
   Vec3f boxLo_ = Vec3f::Zero(), boxHi_ = Vec3f::Zero();
-  /// Particles the memory limit leaves room for next to this terrain (engine/limits.h).
-  size_t maxParticles_ = 0;
   /// Places a particle unless one lies closer than clearance·Δs, or a closed wall closer than
   /// wallMargin(); returns whether it did. Throws LimitExceeded at the particle limit.
   bool place(const Vec3f& pos, const Vec3f& vel, double clearance = 0.5);
@@ -250,33 +280,21 @@ class World {
   double terrainReference_ = 0;
   TerrainAccumulator accumulator_;
   SedimentWorkspace sedimentWork_;
-  double removedSediment_ = 0, initialSoil_ = 0;
-  SedimentDefects defects_;
   Domain domain_;
   Effects effects_;
   Fluid fluid_;
   std::vector<Vec3f> vhat_;
-  std::vector<Emitter> emitters_;
-  std::vector<Sink> sinks_;
-  std::vector<RainState> rain_;
-  Grid grid_;
-  /// kd-tree mode: grid_ is built on demand for place() and the Z-order, not by the search.
-  bool gridStale_ = false;
-  KdTree fluidTree_, boundaryTree_;
-  NeighborLists fluidNeighbors_, boundaryNeighbors_;
+  Supply supply_;
+  Neighborhood neighbors_;
   BoundarySampler sampler_;
   BoundaryParticles boundary_;
-  std::vector<uint32_t> boundaryStart_, boundarySorted_;
   double time_ = 0, dt_ = 0;
   long step_ = 0;
-  uint32_t nextId_ = 0;
-  long removedSinks_ = 0, removedOutflow_ = 0, emittedTotal_ = 0, paintedTotal_ = 0;
-  double energyLedger_ = 0;
+  Ledger ledger_;
   /// max |dρ/dt|/ρ of the last continuity step [1/s]; 0 = none yet.
   double densityRate_ = 0;
   /// m (½|v|² + g y) of particle i [J].
   double particleEnergy(size_t i) const;
-  InvariantReport invariants_;
   std::array<double, size_t(Pass::kCount)> passSeconds_{};
   std::array<long, size_t(Pass::kCount)> passCalls_{};
 };

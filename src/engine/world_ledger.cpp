@@ -26,9 +26,9 @@ SoilBudget World::soilBudget() const {
   SoilBudget s;
   s.terrain = terrainVolume(terrain_, vertexArea_, terrainReference_);
   for (double v : fluid_.sed) s.suspended += v;
-  s.removed = removedSediment_;
-  s.initial = initialSoil_;
-  s.created = defects_.created;
+  s.removed = ledger_.removedSediment;
+  s.initial = ledger_.initialSoil;
+  s.created = ledger_.defects.created;
   return s;
 }
 
@@ -75,12 +75,12 @@ void World::checkInvariants() {
 #pragma omp critical(scour_inv_deep)
     if (tdeep > deepest || (tdeep == deepest && tat < deepestAt)) deepest = tdeep, deepestAt = tat;
   }
-  invariants_.max_penetration_over_ds = std::max(invariants_.max_penetration_over_ds, std::max(deepest, 0.0));
+  ledger_.invariants.max_penetration_over_ds = std::max(ledger_.invariants.max_penetration_over_ds, std::max(deepest, 0.0));
   long badC = -1;
   for (size_t i = 0; i < n; ++i) {
     const double c = fluid_.sed[i] / sediment_.volume;
-    invariants_.c_min = std::min(invariants_.c_min, c);
-    invariants_.c_max = std::max(invariants_.c_max, c);
+    ledger_.invariants.c_min = std::min(ledger_.invariants.c_min, c);
+    ledger_.invariants.c_max = std::max(ledger_.invariants.c_max, c);
     if (badC < 0 && (c < -1e-12 || c > params_.c_max * (1 + 1e-12))) badC = long(i);
   }
   auto where = [&](long i) {
@@ -91,7 +91,7 @@ void World::checkInvariants() {
     return o.str();
   };
   if (badNan >= 0) {
-    ++invariants_.nan;
+    ++ledger_.invariants.nan;
     const Vec3f& v = fluid_.v[badNan];
     std::ostringstream o;
     o << where(badNan) << " has a non-finite state: velocity (" << v.x() << ", " << v.y() << ", "
@@ -109,7 +109,7 @@ void World::checkInvariants() {
   if (effects_.erosion || effects_.deposition || effects_.settling || effects_.diffusion) {
     const SoilBudget soil = soilBudget();
     const double err = soil.relativeError();
-    invariants_.soil_relative_error = std::max(invariants_.soil_relative_error, err);
+    ledger_.invariants.soil_relative_error = std::max(ledger_.invariants.soil_relative_error, err);
     if (!(err <= kSoilTolerance)) {
       std::ostringstream o;
       o << "step " << step_ << " (t = " << time_ << " s): the soil budget is off by " << err
@@ -125,7 +125,7 @@ void World::checkInvariants() {
     throw InvariantViolation(o.str());
   }
   if (badOut >= 0) {
-    ++invariants_.escaped;
+    ++ledger_.invariants.escaped;
     throw InvariantViolation(where(badOut) + " has left the domain through a closed wall");
   }
   if (deepest > params_.max_penetration_over_ds) {

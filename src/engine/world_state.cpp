@@ -74,6 +74,48 @@ constexpr uint32_t kStateVersion = 3;
 
 }  // namespace
 
+void Ledger::save(std::ostream& o) const {
+  put(o, removedBySinks), put(o, removedByOutflow), put(o, emitted), put(o, removedSediment);
+  put(o, painted);
+  put(o, invariants);
+  put(o, defects);
+}
+
+void Ledger::load(std::istream& in, uint32_t version) {
+  get(in, removedBySinks, "counters"), get(in, removedByOutflow, "counters");
+  get(in, emitted, "counters"), get(in, removedSediment, "counters");
+  get(in, painted, "counters");
+  get(in, invariants, "invariants");
+  defects = {};
+  if (version >= 2) get(in, defects, "sediment defects");
+}
+
+void Supply::saveProgress(std::ostream& o) const {
+  put(o, uint64_t(emitters.size()));
+  for (const Emitter& e : emitters) put(o, e.travelled), put(o, e.emitted), put(o, e.blocked);
+  put(o, uint64_t(rain.size()));
+  for (const RainState& r : rain) put(o, r.pending), put(o, r.drawn), put(o, r.emitted), put(o, r.blocked);
+}
+
+void Supply::loadProgress(std::istream& in) {
+  std::vector<Emitter> emitters = this->emitters;
+  std::vector<RainState> rain = this->rain;
+  uint64_t count = 0;
+  get(in, count, "sources");
+  if (count != emitters.size())
+    throw std::runtime_error("state does not fit this scene (" + std::to_string(count) +
+                             " sources, the scene has " + std::to_string(emitters.size()) + ")");
+  for (Emitter& e : emitters) get(in, e.travelled, "sources"), get(in, e.emitted, "sources"), get(in, e.blocked, "sources");
+  get(in, count, "rain");
+  if (count != rain.size())
+    throw std::runtime_error("state does not fit this scene (" + std::to_string(count) +
+                             " rain regions, the scene has " + std::to_string(rain.size()) + ")");
+  for (RainState& r : rain)
+    get(in, r.pending, "rain"), get(in, r.drawn, "rain"), get(in, r.emitted, "rain"), get(in, r.blocked, "rain");
+  this->emitters = std::move(emitters);
+  this->rain = std::move(rain);
+}
+
 void World::saveState(std::ostream& o) const {
   put(o, kStateTag);
   put(o, kStateVersion);
@@ -82,15 +124,9 @@ void World::saveState(std::ostream& o) const {
   putVec(o, terrain_.heights());
   putVec(o, boundary_.x), putVec(o, boundary_.triangle), putVec(o, boundary_.area), putVec(o, boundary_.bary);
   putVec(o, sampler_.activeTiles());
-  put(o, uint64_t(emitters_.size()));
-  for (const Emitter& e : emitters_) put(o, e.travelled), put(o, e.emitted), put(o, e.blocked);
-  put(o, uint64_t(rain_.size()));
-  for (const RainState& r : rain_) put(o, r.pending), put(o, r.drawn), put(o, r.emitted), put(o, r.blocked);
-  put(o, time_), put(o, dt_), put(o, step_), put(o, nextId_);
-  put(o, removedSinks_), put(o, removedOutflow_), put(o, emittedTotal_), put(o, removedSediment_);
-  put(o, paintedTotal_);
-  put(o, invariants_);
-  put(o, defects_);
+  supply_.saveProgress(o);
+  put(o, time_), put(o, dt_), put(o, step_), put(o, supply_.nextId);
+  ledger_.save(o);
   put(o, densityRate_);
 }
 
@@ -130,26 +166,11 @@ void World::loadState(std::istream& in) {
   getVec(in, tiles, "active tiles");
   for (int t : tiles)
     if (t < 0 || t >= sampler_.tileCount()) throw std::runtime_error("state is corrupt (tile)");
-  uint64_t count = 0;
-  get(in, count, "sources");
-  if (count != emitters_.size())
-    throw std::runtime_error("state does not fit this scene (" + std::to_string(count) +
-                             " sources, the scene has " + std::to_string(emitters_.size()) + ")");
-  for (Emitter& e : emitters_) get(in, e.travelled, "sources"), get(in, e.emitted, "sources"), get(in, e.blocked, "sources");
-  get(in, count, "rain");
-  if (count != rain_.size())
-    throw std::runtime_error("state does not fit this scene (" + std::to_string(count) +
-                             " rain regions, the scene has " + std::to_string(rain_.size()) + ")");
-  for (RainState& r : rain_)
-    get(in, r.pending, "rain"), get(in, r.drawn, "rain"), get(in, r.emitted, "rain"), get(in, r.blocked, "rain");
-  get(in, time_, "clock"), get(in, dt_, "clock"), get(in, step_, "clock"), get(in, nextId_, "clock");
-  get(in, removedSinks_, "counters"), get(in, removedOutflow_, "counters");
-  get(in, emittedTotal_, "counters"), get(in, removedSediment_, "counters");
-  get(in, paintedTotal_, "counters");
-  get(in, invariants_, "invariants");
-  defects_ = {};
+  supply_.loadProgress(in);
+  get(in, time_, "clock"), get(in, dt_, "clock"), get(in, step_, "clock"), get(in, supply_.nextId, "clock");
+  Ledger ledger;
+  ledger.load(in, version);
   densityRate_ = 0;
-  if (version >= 2) get(in, defects_, "sediment defects");
   if (version >= 3) get(in, densityRate_, "density rate");
   f.scratch.clear();
   fluid_ = std::move(f);
@@ -158,7 +179,9 @@ void World::loadState(std::istream& in) {
   wall_ = wallSurfaceFor(terrain_, params_);
   boundary_ = std::move(b);
   sampler_.setActiveTiles(std::move(tiles));
-  energyLedger_ = mechanicalEnergy();
+  ledger.initialSoil = ledger_.initialSoil;
+  ledger_ = ledger;
+  ledger_.energy = mechanicalEnergy();
   // The neighbor lists of the last search: the particles have not moved since it (a step ends
   // with a kick), and the boundary lists are rebuilt on the boundary particles' places.
   buildFluidLists();
@@ -168,10 +191,8 @@ void World::loadState(std::istream& in) {
 size_t World::memoryBytes() const {
   // The fluid's arrays, the predicted velocities and the scratch array.
   const size_t per = Fluid::bytesPerParticle() + sizeof(Vec3f) + sizeof(float);
-  return fluid_.x.capacity() * per + grid_.bytes() + fluidTree_.bytes() + boundaryTree_.bytes() +
-         fluidNeighbors_.bytes() + boundaryNeighbors_.bytes() +
+  return fluid_.x.capacity() * per + neighbors_.bytes() +
          boundary_.x.capacity() * (sizeof(Vec3f) + sizeof(int) + sizeof(double) + sizeof(Eigen::Vector2f)) +
-         (boundaryStart_.capacity() + boundarySorted_.capacity()) * sizeof(uint32_t) +
          (sedimentWork_.conc.capacity() + sedimentWork_.hind.capacity() +
           sedimentWork_.pairGeometry.capacity()) * sizeof(float) +
          sedimentWork_.scale.capacity() * sizeof(SedimentWorkspace::Scales) +

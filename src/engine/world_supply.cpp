@@ -41,7 +41,7 @@ using detail::validateSink;
 
 void World::removeParticles() {
   const bool open = !domain_.walls;
-  const bool sinking = effects_.sinks && !sinks_.empty();
+  const bool sinking = effects_.sinks && !supply_.sinks.empty();
   if (!sinking && !open) return;
   timed(Pass::kSinks, [&] {
     std::vector<uint32_t> keep;
@@ -50,12 +50,12 @@ void World::removeParticles() {
       const Vec3f& x = fluid_.x[i];
       bool sunk = false;
       if (sinking)
-        for (const Sink& s : sinks_) sunk = sunk || s.contains(x);
+        for (const Sink& s : supply_.sinks) sunk = sunk || s.contains(x);
       bool out = open && (x.x() < terrain_.x0() || x.x() > terrain_.xMax() || x.z() < terrain_.z0() ||
                           x.z() > terrain_.zMax());
-      if (sunk || out) removedSediment_ += fluid_.sed[i], energyLedger_ -= particleEnergy(i);
-      if (sunk) ++removedSinks_;
-      else if (out) ++removedOutflow_;
+      if (sunk || out) ledger_.removedSediment += fluid_.sed[i], ledger_.energy -= particleEnergy(i);
+      if (sunk) ++ledger_.removedBySinks;
+      else if (out) ++ledger_.removedByOutflow;
       else keep.push_back(uint32_t(i));
     }
     if (keep.size() != fluid_.size()) fluid_.gather(keep);
@@ -67,7 +67,7 @@ double World::rainArea(const Rain& r) const {
 }
 
 bool World::place(const Vec3f& pos, const Vec3f& vel, double clearance) {
-  if (fluid_.size() >= maxParticles_) {
+  if (fluid_.size() >= supply_.maxParticles) {
     std::ostringstream o;
     o << "step " << step_ << " (t = " << time_ << " s): " << fluid_.size()
       << " particles, the most the memory limit of " << Limits::kMaxBytes / 1e9
@@ -78,7 +78,7 @@ bool World::place(const Vec3f& pos, const Vec3f& vel, double clearance) {
   // than a cell since, so its 27 cells still hold every particle within a clearance (≤ Δs) of
   // pos. Particles placed since (index ≥ the grid's count: this step's drops and layers, the
   // brush's) are checked one by one; there are few.
-  ensurePlacementGrid();
+  const Grid& grid = neighbors_.placementGrid(fluid_.x, float(sph_.h));
   // Never inside a closed wall's contact zone: the wall's spring would hand the new particle
   // energy no source supplied (`scour stress`, edge-source and cloudburst).
   if (domain_.walls) {
@@ -88,24 +88,24 @@ bool World::place(const Vec3f& pos, const Vec3f& vel, double clearance) {
       return false;
   }
   const float r2 = float(clearance * clearance * params_.spacing * params_.spacing);
-  const size_t indexed = grid_.particleCount();
+  const size_t indexed = grid.particleCount();
   bool occupied = false;
-  grid_.forEachCandidate(pos, grid_.start(), grid_.sorted(), [&](uint32_t j) {
+  grid.forEachCandidate(pos, grid.start(), grid.sorted(), [&](uint32_t j) {
     occupied = occupied || (j < indexed && (fluid_.x[j] - pos).squaredNorm() < r2);
   });
   for (size_t j = indexed; j < fluid_.size() && !occupied; ++j)
     occupied = (fluid_.x[j] - pos).squaredNorm() < r2;
   if (occupied) return false;
-  fluid_.push(pos, vel, nextId_++, float(params_.rest_density));
+  fluid_.push(pos, vel, supply_.nextId++, float(params_.rest_density));
   vhat_.push_back(vel);
-  energyLedger_ += particleEnergy(fluid_.size() - 1);
+  ledger_.energy += particleEnergy(fluid_.size() - 1);
   return true;
 }
 
 void World::emit() {
-  if (emitters_.empty() || !effects_.sources) return;
+  if (supply_.emitters.empty() || !effects_.sources) return;
   timed(Pass::kSources, [&] {
-    for (Emitter& e : emitters_) {
+    for (Emitter& e : supply_.emitters) {
       if (time_ < e.src.start || time_ >= e.src.stop) continue;
       e.travelled += e.speed * dt_;
       while (e.travelled >= params_.spacing) {
@@ -115,7 +115,7 @@ void World::emit() {
         for (const auto& off : e.slots) {
           const bool placed = place((base + off).cast<float>(), vel, kEmitClearance);
           ++(placed ? e.emitted : e.blocked);
-          emittedTotal_ += placed;
+          ledger_.emitted += placed;
         }
       }
     }
@@ -123,10 +123,10 @@ void World::emit() {
 }
 
 void World::rain() {
-  if (rain_.empty() || !effects_.rain) return;
+  if (supply_.rain.empty() || !effects_.rain) return;
   timed(Pass::kRain, [&] {
     const double drop = params_.spacing * params_.spacing * params_.spacing;
-    for (RainState& r : rain_) {
+    for (RainState& r : supply_.rain) {
       const Rain& rn = r.rain;
       if (time_ < rn.start || time_ >= rn.stop) continue;
       const double metresPerSecond = rn.intensity_mm_h / 3.6e6;
@@ -149,7 +149,7 @@ void World::rain() {
         const double y = terrain_.heightAt(x, z) + std::max(rn.drop_height, params_.spacing);
         const bool placed = place(Vec3f(float(x), float(y), float(z)), Vec3f(0, -float(rn.drop_speed), 0));
         ++(placed ? r.emitted : r.blocked);
-        emittedTotal_ += placed;
+        ledger_.emitted += placed;
       }
     }
   });
@@ -157,45 +157,45 @@ void World::rain() {
 
 std::vector<Source> World::sources() const {
   std::vector<Source> out;
-  for (const Emitter& e : emitters_) out.push_back(e.src);
+  for (const Emitter& e : supply_.emitters) out.push_back(e.src);
   return out;
 }
 
 size_t World::addSource(const Source& s) {
-  emitters_.push_back(makeEmitter(s, params_, "source"));
-  return emitters_.size() - 1;
+  supply_.emitters.push_back(makeEmitter(s, params_, "source"));
+  return supply_.emitters.size() - 1;
 }
 
 void World::updateSource(size_t i, const Source& s) {
-  require(i < emitters_.size(), "source " + std::to_string(i) + " does not exist");
+  require(i < supply_.emitters.size(), "source " + std::to_string(i) + " does not exist");
   Emitter next = makeEmitter(s, params_, "source");
-  const long emitted = emitters_[i].emitted, blocked = emitters_[i].blocked;
-  emitters_[i] = std::move(next);
-  emitters_[i].emitted = emitted, emitters_[i].blocked = blocked;
+  const long emitted = supply_.emitters[i].emitted, blocked = supply_.emitters[i].blocked;
+  supply_.emitters[i] = std::move(next);
+  supply_.emitters[i].emitted = emitted, supply_.emitters[i].blocked = blocked;
 }
 
 void World::removeSource(size_t i) {
-  require(i < emitters_.size(), "source " + std::to_string(i) + " does not exist");
-  emitters_.erase(emitters_.begin() + long(i));
+  require(i < supply_.emitters.size(), "source " + std::to_string(i) + " does not exist");
+  supply_.emitters.erase(supply_.emitters.begin() + long(i));
 }
 
 size_t World::addSink(const Sink& s) {
   require(s.lo.allFinite() && s.hi.allFinite() && (s.hi - s.lo).minCoeff() > 0,
           "sink: max must exceed min on every axis");
-  sinks_.push_back(s);
-  return sinks_.size() - 1;
+  supply_.sinks.push_back(s);
+  return supply_.sinks.size() - 1;
 }
 
 void World::updateSink(size_t i, const Sink& s) {
-  require(i < sinks_.size(), "sink " + std::to_string(i) + " does not exist");
+  require(i < supply_.sinks.size(), "sink " + std::to_string(i) + " does not exist");
   require(s.lo.allFinite() && s.hi.allFinite() && (s.hi - s.lo).minCoeff() > 0,
           "sink: max must exceed min on every axis");
-  sinks_[i] = s;
+  supply_.sinks[i] = s;
 }
 
 void World::removeSink(size_t i) {
-  require(i < sinks_.size(), "sink " + std::to_string(i) + " does not exist");
-  sinks_.erase(sinks_.begin() + long(i));
+  require(i < supply_.sinks.size(), "sink " + std::to_string(i) + " does not exist");
+  supply_.sinks.erase(supply_.sinks.begin() + long(i));
 }
 
 long World::addWater(const Eigen::Vector3d& centre, double radius) {
@@ -218,13 +218,13 @@ long World::addWater(const Eigen::Vector3d& centre, double radius) {
         if (x.y() < terrain_.heightAt(x.x(), x.z()) + 0.5 * ds) continue;
         added += place(x.cast<float>(), Vec3f::Zero(), 0.95);  // water at rest: a full Δs apart
       }
-  paintedTotal_ += added;  // the brush is not a source: counted apart
+  ledger_.painted += added;  // the brush is not a source: counted apart
   return added;
 }
 
 long World::blockedSlots() const {
   long s = 0;
-  for (const auto& e : emitters_) s += e.blocked;
+  for (const auto& e : supply_.emitters) s += e.blocked;
   return s;
 }
 

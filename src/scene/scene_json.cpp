@@ -514,7 +514,7 @@ SceneSpec specFromJson(const json& j, const std::string& file) {
       WaterBlock wb;
       wb.min = b.vec3("min");
       wb.max = b.vec3("max");
-      wb.above_terrain = b.boolean("above_terrain", false);
+      wb.above_terrain = b.boolean("above_terrain", wb.above_terrain);
       if (b.has("flood_from")) {
         const auto seed = b.vec2("flood_from");
         wb.flood = true;
