@@ -46,7 +46,8 @@ bool terrainHeight(const Frame& f, double x, double z, float& height) {
 
 bool pickTerrain(const Frame& f, const Camera& c, float aspect, double mx, double my, int w, int h,
                  Eigen::Vector3f& hit) {
-  const Eigen::Matrix4f worldFromClip = (c.projection(aspect, kNear, kFar) * c.view()).inverse();
+  const Eigen::Matrix4f worldFromClip =
+      (c.clipFromCamera(aspect, kNear, kFar) * c.cameraFromWorld()).inverse();
   const float x = float(2 * mx / w - 1), y = float(1 - 2 * my / h);
   const Eigen::Vector4f a = worldFromClip * Eigen::Vector4f(x, y, -1, 1);
   const Eigen::Vector4f b = worldFromClip * Eigen::Vector4f(x, y, 1, 1);
@@ -67,7 +68,7 @@ bool pickTerrain(const Frame& f, const Camera& c, float aspect, double mx, doubl
 
 bool toWindow(const Camera& c, float aspect, const Eigen::Vector3f& p, int w, int h,
               Eigen::Vector2f& pixel) {
-  const Eigen::Matrix4f clipFromWorld = c.projection(aspect, kNear, kFar) * c.view();
+  const Eigen::Matrix4f clipFromWorld = c.clipFromCamera(aspect, kNear, kFar) * c.cameraFromWorld();
   const Eigen::Vector4f q = clipFromWorld * Eigen::Vector4f(p.x(), p.y(), p.z(), 1);
   if (!(q.w() > 1e-6f)) return false;
   pixel = {float((q.x() / q.w() + 1) * 0.5 * w), float((1 - q.y() / q.w()) * 0.5 * h)};

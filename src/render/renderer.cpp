@@ -69,9 +69,9 @@ void setMatrix(const Program& p, const char* name, const Eigen::Matrix4f& m) {
 
 }  // namespace
 
-Eigen::Matrix4f Camera::view() const { return lookAt(eye, target, up); }
+Eigen::Matrix4f Camera::cameraFromWorld() const { return lookAt(eye, target, up); }
 
-Eigen::Matrix4f Camera::projection(float aspect, float near, float far) const {
+Eigen::Matrix4f Camera::clipFromCamera(float aspect, float near, float far) const {
   const float f = 1.0f / std::tan(0.5f * fov_deg * float(M_PI) / 180.0f);
   Eigen::Matrix4f m = Eigen::Matrix4f::Zero();
   m(0, 0) = f / aspect, m(1, 1) = f;
@@ -301,7 +301,7 @@ void Renderer::render(const Frame& f, const Camera& c, const RenderSettings& s) 
   const float radius = 0.5f * (hi - lo).norm() + 1e-3f;
   const float dist = (c.eye - centre).norm();
   const float near = std::max(1e-3f * radius, dist - radius), far = dist + radius;
-  const Eigen::Matrix4f clipFromWorld = c.projection(float(width_) / float(height_), near, far) * c.view();
+  const Eigen::Matrix4f clipFromWorld = c.clipFromCamera(float(width_) / float(height_), near, far) * c.cameraFromWorld();
   const Eigen::Vector3f sun = s.sun.normalized();
   const bool caustics = water && s.caustics;
   if (caustics) {

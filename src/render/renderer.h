@@ -18,8 +18,8 @@ namespace scour {
 struct Camera {
   Eigen::Vector3f eye{0, 1, 2}, target{0, 0, 0}, up{0, 1, 0};
   float fov_deg = 40.0f;
-  Eigen::Matrix4f view() const;
-  Eigen::Matrix4f projection(float aspect, float near, float far) const;
+  Eigen::Matrix4f cameraFromWorld() const;  ///< the view (look-at) transform
+  Eigen::Matrix4f clipFromCamera(float aspect, float near, float far) const;  ///< perspective
 };
 
 /// A three-quarter view of the whole terrain, from the south-west and above.
