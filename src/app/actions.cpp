@@ -8,7 +8,15 @@ namespace scour {
 namespace {
 
 std::string point(const Eigen::Vector3d& p) {
-  return "(" + formatNumber(p.x()) + ", " + formatNumber(p.y()) + ", " + formatNumber(p.z()) + ")";
+  // Appended, not "(" + …: GCC 12 warns falsely (-Wrestrict) on a literal plus a temporary.
+  std::string out = "(";
+  out += formatNumber(p.x());
+  out += ", ";
+  out += formatNumber(p.y());
+  out += ", ";
+  out += formatNumber(p.z());
+  out += ")";
+  return out;
 }
 
 }  // namespace
