@@ -5,9 +5,13 @@
 
 namespace scour {
 
-namespace {
+std::string formatNumber(double v) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.9g", v);
+  return buf;
+}
 
-std::string point(const Eigen::Vector3d& p) {
+std::string formatPoint(const Eigen::Vector3d& p) {
   // Appended, not "(" + …: GCC 12 warns falsely (-Wrestrict) on a literal plus a temporary.
   std::string out = "(";
   out += formatNumber(p.x());
@@ -17,14 +21,6 @@ std::string point(const Eigen::Vector3d& p) {
   out += formatNumber(p.z());
   out += ")";
   return out;
-}
-
-}  // namespace
-
-std::string formatNumber(double v) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, "%.9g", v);
-  return buf;
 }
 
 Actions::Actions(Post post, double spacing)
@@ -45,7 +41,7 @@ void Actions::click(double x, double y) {
     placeSink(hit);
   } else if (tool == Tool::kBrush) {
     post_(cmd::PaintWater{hit.cast<double>() + Eigen::Vector3d(0, brushRadius, 0), brushRadius});
-    log_.push_back("painted water at " + point(hit.cast<double>()));
+    log_.push_back("painted water at " + formatPoint(hit.cast<double>()));
   } else {
     placeSource(hit);
   }
@@ -58,7 +54,7 @@ void Actions::placeSink(const Eigen::Vector3f& hit) {
   k.hi = hit.cast<double>() + Eigen::Vector3d::Constant(sinkRadius);
   perform({{cmd::AddSink{k}}, {cmd::RemoveSink{snapshot().sinks.size()}}, "place a sink", ""},
           false);
-  log_.push_back("sink placed at " + point(hit.cast<double>()) + ", half-size " +
+  log_.push_back("sink placed at " + formatPoint(hit.cast<double>()) + ", half-size " +
                  formatNumber(sinkRadius) + " m");
 }
 
@@ -74,7 +70,7 @@ void Actions::placeSource(const Eigen::Vector3f& hit) {
       {{cmd::AddSource{s}}, {cmd::RemoveSource{snapshot().sources.size()}}, "place a source", ""},
       false);
   lastSource_ = s.center, lastRadius_ = s.radius;
-  log_.push_back("source placed at " + point(s.center));
+  log_.push_back("source placed at " + formatPoint(s.center));
 }
 
 bool Actions::press(double x, double y) {
@@ -112,7 +108,7 @@ void Actions::dragTo(double x, double y) {
 void Actions::release() {
   if (drag_.index >= 0 && drag_.moved) {
     lastSource_ = drag_.last, lastRadius_ = drag_.start.radius;
-    log_.push_back("source " + std::to_string(drag_.index) + " moved to " + point(drag_.last));
+    log_.push_back("source " + std::to_string(drag_.index) + " moved to " + formatPoint(drag_.last));
   }
   drag_ = SourceDrag{};
 }

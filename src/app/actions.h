@@ -45,6 +45,8 @@ constexpr float kMarkerPixels = 10;
 
 /// "%.9g": how the log and the parameter edits write a number.
 std::string formatNumber(double v);
+/// "(x, y, z)", each as formatNumber writes it.
+std::string formatPoint(const Eigen::Vector3d& p);
 
 class Actions {
  public:

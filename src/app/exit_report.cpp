@@ -17,8 +17,7 @@ std::string exitReport(const Snapshot& last, long frames, const Actions& actions
     }
   std::ostringstream where;
   for (const Source& s : last.sources)
-    where << (where.tellp() > 0 ? " " : "") << "(" << formatNumber(s.center.x()) << ", "
-          << formatNumber(s.center.y()) << ", " << formatNumber(s.center.z()) << ")";
+    where << (where.tellp() > 0 ? " " : "") << formatPoint(s.center);
   std::ostringstream out;
   out << "closed after " << frames << " frames; simulated " << last.frame.time << " s, "
       << last.frame.step << " steps; " << last.sources.size() << " sources at [" << where.str()

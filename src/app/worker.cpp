@@ -99,9 +99,7 @@ void SimulationWorker::run() {
       const RunEnd end = runSteps(*world_, stepsPerFrame_);
       const long done = end.steps;
       if (!end.ok()) {
-        const bool invariant = end.status == RunEnd::Status::kInvariantViolated;
-        error_ = std::string(invariant ? "invariant violated at " : "the run stopped: ") +
-                 end.message + " (paused; reset to go on)";
+        error_ = end.describe() + " (paused; reset to go on)";
         paused_ = true;
       }
       if (stepsToDo_ > 0) --stepsToDo_;

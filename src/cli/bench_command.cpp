@@ -24,14 +24,9 @@ namespace {
 
 // A run of steps that did not end well: the message, and the exit code run would give.
 int stepFailure(const RunEnd& end, const std::string& scene = "") {
-  std::cerr << "error: " << (scene.empty() ? "" : scene + ": ")
-            << (end.status == RunEnd::Status::kInvariantViolated ? "invariant violated at "
-                : end.status == RunEnd::Status::kLimitExceeded   ? "limit reached at "
-                                                                 : "")
-            << end.message << "\n";
-  return end.status == RunEnd::Status::kFailed ? kExitFailure : kExitInvariant;
+  std::cerr << "error: " << (scene.empty() ? "" : scene + ": ") << end.describe() << "\n";
+  return exitCode(end);
 }
-
 
 struct BenchOptions {
   std::string scene = "block";

@@ -7,11 +7,17 @@
 #include <string>
 #include <vector>
 
+#include "engine/step_driver.h"
 #include "scene/presets.h"
 
 namespace scour {
 
 constexpr int kExitOk = 0, kExitFailure = 1, kExitInput = 2, kExitInvariant = 3;
+
+/// The exit code of a run of steps that ended so: 0, 1 (failed) or 3 (an invariant or a limit).
+inline int exitCode(const RunEnd& end) {
+  return end.ok() ? kExitOk : end.status == RunEnd::Status::kFailed ? kExitFailure : kExitInvariant;
+}
 
 /// An input error found after parsing; main prints "error: <what>" and exits with 2.
 struct InputError : std::runtime_error {

@@ -181,15 +181,10 @@ int runScene(const RunOptions& o) {
   if (tty) progress(true);
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   outputs.finish(*world, end, wall);
-  const std::string failure = end.message, status = end.statusName();
-
-  if (!failure.empty()) {
-    const char* what = status == "invariant_violated" ? "invariant violated at "
-                       : status == "limit_exceeded"   ? "limit reached at "
-                                                      : "the run failed: ";
-    std::cerr << "error: " << what << failure << "\n"
+  if (!end.ok()) {
+    std::cerr << "error: " << end.describe() << "\n"
               << "summary written to " << (dir / "summary.json").string() << "\n";
-    return status == "failed" ? kExitFailure : kExitInvariant;
+    return exitCode(end);
   }
   std::cout << "ran " << world->steps() << " steps (" << world->time() << " s simulated, "
             << world->fluid().size() << " particles) in " << wall << " s; outputs in "

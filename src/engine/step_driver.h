@@ -22,6 +22,9 @@ struct RunEnd {
   bool ok() const { return status == Status::kOk; }
   /// "ok", "invariant_violated", "limit_exceeded" or "failed" (summary.json's `status`).
   const char* statusName() const;
+  /// How the messages of run, bench and the window say it: "invariant violated at <message>",
+  /// "limit reached at <message>", "the run failed: <message>"; "" when ok.
+  std::string describe() const;
 };
 
 /// One step as it ran: its figures, its wall time, and the time of each pass and each of the

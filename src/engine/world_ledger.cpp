@@ -1,7 +1,6 @@
 // The World's ledgers and invariants: the soil budget (terrain, suspended, removed), the
 // mechanical energy given and held, and the checks that stop a step that breaks them.
 #include "engine/world.h"
-#include "engine/step_driver.h"
 #include "engine/world_parts.h"
 
 #include <omp.h>
@@ -134,16 +133,6 @@ void World::checkInvariants() {
       << params_.max_penetration_over_ds << " Δs)";
     throw InvariantViolation(o.str());
   }
-}
-
-const char* RunEnd::statusName() const {
-  switch (status) {
-    case Status::kOk: return "ok";
-    case Status::kInvariantViolated: return "invariant_violated";
-    case Status::kLimitExceeded: return "limit_exceeded";
-    case Status::kFailed: return "failed";
-  }
-  return "failed";
 }
 
 }  // namespace scour

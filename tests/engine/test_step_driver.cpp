@@ -50,6 +50,7 @@ TEST_CASE("the step driver says which way a run stopped", "[engine][driver]") {
   CHECK(broken.steps < 5000);
   CHECK(broken.steps == w.steps() - 1);  // the failed step is not counted
   CHECK_THAT(broken.message, Catch::Contains("step ") && Catch::Contains("particle "));
+  CHECK(broken.describe() == "invariant violated at " + broken.message);
   // What the caller does after a step (an output, say) can end the run too.
   World fine(makePreset("default", 0.05).desc);
   const RunEnd failed = runSteps(fine, 10, [&](const StepRecord& r) {
@@ -58,5 +59,7 @@ TEST_CASE("the step driver says which way a run stopped", "[engine][driver]") {
   CHECK(failed.status == RunEnd::Status::kFailed);
   CHECK(std::string(failed.statusName()) == "failed");
   CHECK(failed.message == "disk full");
+  CHECK(failed.describe() == "the run failed: disk full");
+  CHECK(RunEnd{}.describe().empty());
   CHECK(failed.steps == 3);
 }
