@@ -45,7 +45,7 @@ int main(int argc, char** argv) {
   }
   try {
     if (presets->parsed()) {
-      for (const BuiltinScene& b : builtinScenes()) std::cout << b.name << "\t" << b.description << "\n";
+      for (const BuiltinScene& b : builtinScenes()) std::cout << b.spec.name << "\t" << b.spec.description << "\n";
       return kExitOk;
     }
     if (app.got_subcommand("run")) return run();

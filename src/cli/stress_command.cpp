@@ -31,8 +31,9 @@ StressScene stressSceneOrFile(const std::string& name, double time) {
   if (name.find('/') == std::string::npos && !name.ends_with(".json")) return stressScene(name);
   StressScene s = stressSceneFrom(loadSceneFile(name), std::filesystem::path(name).stem().string());
   if (s.description.empty()) s.description = name;
-  if (time > 0) s.duration = time;
-  if (!(s.duration > 0)) s.duration = 1.0;
+  double& duration = s.spec.stress.duration;
+  if (time > 0) duration = time;
+  if (!(duration > 0)) duration = 1.0;
   return s;
 }
 

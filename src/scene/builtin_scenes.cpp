@@ -18,11 +18,9 @@ BuiltinScene readBuiltin(const Asset& a) {
   const std::string stem = path.substr(b.stress ? 7 : 0, path.size() - (b.stress ? 7 : 0) - 5);
   const std::string text(reinterpret_cast<const char*>(a.data), a.size);
   b.spec = specFromJson(parseJsonText(text, b.file), b.file);
-  b.name = b.spec.name;
-  b.description = b.spec.description;
   // The name opens the file: they must agree (a test reads every file).
-  if (b.name != (b.stress ? "stress-" : "") + stem)
-    throw std::logic_error(b.file + ": name '" + b.name + "' does not match the file's name");
+  if (b.spec.name != (b.stress ? "stress-" : "") + stem)
+    throw std::logic_error(b.file + ": name '" + b.spec.name + "' does not match the file's name");
   return b;
 }
 
@@ -39,13 +37,13 @@ const std::vector<BuiltinScene>& builtinScenes() {
 
 const BuiltinScene* findBuiltinScene(const std::string& name) {
   for (const BuiltinScene& b : builtinScenes())
-    if (b.name == name) return &b;
+    if (b.spec.name == name) return &b;
   return nullptr;
 }
 
 std::string builtinSceneNames() {
   std::string names;
-  for (const BuiltinScene& b : builtinScenes()) names += (names.empty() ? "" : ", ") + b.name;
+  for (const BuiltinScene& b : builtinScenes()) names += (names.empty() ? "" : ", ") + b.spec.name;
   return names;
 }
 

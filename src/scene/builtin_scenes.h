@@ -12,11 +12,11 @@
 
 namespace scour {
 
+/// A built-in scene; its name and description are its spec's (the file's own).
 struct BuiltinScene {
-  std::string name, description;  ///< the file's own
-  std::string file;               ///< how messages name it: "builtin:scenes/canyon.json"
-  bool stress = false;            ///< one of assets/scenes/stress/
-  SceneSpec spec;                 ///< as read, before any --scale
+  std::string file;     ///< how messages name it: "builtin:scenes/canyon.json"
+  bool stress = false;  ///< one of assets/scenes/stress/
+  SceneSpec spec;       ///< as read, before any --scale
 };
 
 /// Every built-in scene, the presets first, each group in file-name order; read once.

@@ -120,7 +120,7 @@ const std::vector<PresetInfo>& presetList() {
   static const std::vector<PresetInfo> list = [] {
     std::vector<PresetInfo> out;
     for (const BuiltinScene& b : builtinScenes())
-      if (!b.stress) out.push_back({b.name.c_str(), b.description.c_str()});
+      if (!b.stress) out.push_back({b.spec.name.c_str(), b.spec.description.c_str()});
     return out;
   }();
   return list;

@@ -37,7 +37,7 @@ const std::vector<std::string>& stressSceneNames() {
   static const std::vector<std::string> names = [] {
     std::vector<std::string> n;
     for (const BuiltinScene& b : builtinScenes())
-      if (b.stress) n.push_back(b.name.substr(7));  // "stress-cliffs": "cliffs"
+      if (b.stress) n.push_back(b.spec.name.substr(7));  // "stress-cliffs": "cliffs"
     return n;
   }();
   return names;
@@ -48,8 +48,6 @@ StressScene stressSceneFrom(const SceneSpec& spec, const std::string& name) {
   s.name = name;
   s.description = spec.description;
   s.spec = spec;
-  s.duration = spec.stress.duration;
-  s.jumps = spec.stress.jumps;
   return s;
 }
 
@@ -70,7 +68,7 @@ std::vector<StressScene> paperStressScenes(long steps) {
     s.name = std::string("paper-") + name;
     s.spec = presetSpec(name);
     s.description = "the paper's " + std::string(name) + " at full size, " + std::to_string(steps) + " steps";
-    s.duration = 1e9;
+    s.spec.stress.duration = 1e9;
     s.max_steps = steps;
     out.push_back(std::move(s));
   }
@@ -97,7 +95,8 @@ StressResult runStress(const StressScene& scene, const StressLimits& limits,
   r.particles_start = r.particles_max = r.particles_end = world.fluid().size();
   r.c_limit = p.c_max;
   r.min_dt = std::numeric_limits<double>::infinity();
-  std::vector<bool> jumped(scene.jumps.size(), false);
+  const std::vector<ParamJump>& jumps = scene.spec.stress.jumps;
+  std::vector<bool> jumped(jumps.size(), false);
   if (trace)
     *trace << "step,t_s,dt_s,particles,kinetic_J,potential_J,ledger_J,elastic0_J,max_speed_m_s,"
               "penetration_ds,rho_min,rho_max,a_max,fastest\n";
@@ -106,16 +105,16 @@ StressResult runStress(const StressScene& scene, const StressLimits& limits,
   };
   // Before each step: is there more to run, and which parameter jumps are due.
   auto more = [&] {
-    if (!(world.time() < scene.duration && r.pass &&
+    if (!(world.time() < scene.spec.stress.duration && r.pass &&
           (scene.max_steps <= 0 || r.steps < scene.max_steps)))
       return false;
-    for (size_t j = 0; j < scene.jumps.size(); ++j) {
-      if (jumped[j] || world.time() < scene.jumps[j].time) continue;
+    for (size_t j = 0; j < jumps.size(); ++j) {
+      if (jumped[j] || world.time() < jumps[j].time) continue;
       jumped[j] = true;
       SimParams q = world.params();
-      const ParamInfo* info = findParam(scene.jumps[j].key);
-      if (!info || !info->dmember) throw std::logic_error("stress: bad jump " + scene.jumps[j].key);
-      q.*(info->dmember) *= scene.jumps[j].factor;
+      const ParamInfo* info = findParam(jumps[j].key);
+      if (!info || !info->dmember) throw std::logic_error("stress: bad jump " + jumps[j].key);
+      q.*(info->dmember) *= jumps[j].factor;
       world.setParams(q);
     }
     return true;

@@ -29,12 +29,12 @@
 
 namespace scour {
 
+/// A scene as `scour stress` runs it: for spec.stress.duration simulated seconds, with the
+/// parameter jumps of spec.stress (scene/presets.h).
 struct StressScene {
   std::string name, description;
   SceneSpec spec;
-  double duration = 1.0;  ///< simulated seconds
-  long max_steps = 0;     ///< > 0: stop after this many steps, whichever comes first
-  std::vector<ParamJump> jumps;  ///< (scene/presets.h)
+  long max_steps = 0;  ///< > 0: stop after this many steps, whichever comes first
 };
 
 /// The scenes, in report order.
@@ -42,7 +42,7 @@ const std::vector<std::string>& stressSceneNames();
 /// The stress scene of assets/scenes/stress/<name>.json. Throws std::invalid_argument naming
 /// the valid scenes for an unknown name.
 StressScene stressScene(const std::string& name);
-/// A scene run as its "stress" section says (its duration and parameter jumps), under `name`.
+/// A scene run as its "stress" section says, under `name`.
 StressScene stressSceneFrom(const SceneSpec& spec, const std::string& name);
 /// The paper's canyon, lake and waterfall at full size, `steps` steps each, as stress scenes
 /// (`scour stress --paper`; minutes each, not in CI).

@@ -101,9 +101,9 @@ TEST_CASE("every built-in scene is its file in assets/scenes/, read by the scene
   const std::string dir = std::string(SCOUR_SOURCE_DIR) + "/assets/scenes/";
   size_t presets = 0, stress = 0;
   for (const BuiltinScene& b : builtinScenes()) {
-    INFO(b.name);
+    INFO(b.spec.name);
     b.stress ? ++stress : ++presets;
-    const std::string stem = b.stress ? b.name.substr(7) : b.name;
+    const std::string stem = b.stress ? b.spec.name.substr(7) : b.spec.name;
     const std::string path = dir + (b.stress ? "stress/" : "") + stem + ".json";
     // The bytes built in are the file's, and the file read from disk is the same scene.
     std::ifstream in(path, std::ios::binary);
@@ -114,8 +114,8 @@ TEST_CASE("every built-in scene is its file in assets/scenes/, read by the scene
     REQUIRE(a != nullptr);
     CHECK(std::string(reinterpret_cast<const char*>(a->data), a->size) == file);
     CHECK(specToJson(loadSceneFile(path)) == specToJson(b.spec));
-    CHECK(specToJson(presetSpec(b.name)) == specToJson(b.spec));  // scale 1 changes nothing
-    CHECK(!b.description.empty());
+    CHECK(specToJson(presetSpec(b.spec.name)) == specToJson(b.spec));  // scale 1 changes nothing
+    CHECK(!b.spec.description.empty());
     CHECK(b.stress == (b.spec.stress.duration > 0));  // the stress scenes say how long they run
   }
   CHECK(presets == presetList().size());

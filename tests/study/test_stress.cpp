@@ -11,7 +11,7 @@ using namespace scour;
 TEST_CASE("stress: a step far beyond the CFL limit is caught as an energy blow-up", "[stress]") {
   StressScene s = stressScene("dambreak-wall");
   s.spec.params.fixed_dt = 0.004;  // 16× the CFL step of this scene
-  s.duration = 0.3;
+  s.spec.stress.duration = 0.3;
   const StressResult r = runStress(s);
   REQUIRE_FALSE(r.pass);
   CHECK(!r.failure.empty());
@@ -21,7 +21,7 @@ TEST_CASE("stress: a step far beyond the CFL limit is caught as an energy blow-u
 TEST_CASE("stress: the ledger counts a source's energy, so a jet's energy stays bounded",
           "[stress]") {
   StressScene s = stressScene("waterfall-drop");
-  s.duration = 0.25;
+  s.spec.stress.duration = 0.25;
   const StressResult r = runStress(s);
   REQUIRE(r.pass);
   CHECK(r.emitted > 100);  // the jet brought particles (and their energy) in
@@ -32,7 +32,7 @@ TEST_CASE("stress: the ledger counts a source's energy, so a jet's energy stays 
 
 TEST_CASE("stress: nothing is placed inside a closed wall's contact zone", "[stress]") {
   StressScene s = stressScene("edge-source");
-  s.duration = 0.1;
+  s.spec.stress.duration = 0.1;
   const Scene built = buildScene(s.spec);
   World w(built.desc);
   // Right after a step, the particles it emitted stand where they were placed (emission follows
