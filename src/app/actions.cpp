@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <variant>
 
 namespace scour {
 
@@ -124,11 +125,17 @@ void Actions::cancelDrag() {
 void Actions::setParameter(const std::string& key, const std::string& value, bool extend) {
   const ParamInfo* info = findParam(key);
   std::string old = value;
-  if (info) {
+  const Edit* last = history_.nextUndo();
+  if (extend && last && last->key == key && !last->undo.empty()) {
+    // A drag goes on: the value before it is the one its first edit undoes to, not the value
+    // the newest snapshot holds (one from the drag's middle).
+    old = std::get<cmd::SetParam>(last->undo.front()).value;
+  } else if (info) {
     const double current = getParam(snapshot().params, *info);
     old = info->choices ? info->choices[int(current)] : formatNumber(current);
   }
-  perform({{cmd::SetParam{key, value}}, {cmd::SetParam{key, old}}, key + " = " + value, key},
+  perform({{cmd::SetParam{key, value}}, {cmd::SetParam{key, old}},
+           key + " = " + value + " (was " + old + ")", key},
           extend);
 }
 

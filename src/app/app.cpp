@@ -12,9 +12,13 @@
 
 #include <Eigen/Geometry>
 #include <algorithm>
+#include <cctype>
+#include <csignal>
 #include <cmath>
+#include <fstream>
 #include <iostream>
 #include <optional>
+#include <utility>
 
 #include "app/actions.h"
 #include "app/exit_report.h"
@@ -29,12 +33,29 @@ namespace scour {
 
 namespace {
 
+// SIGINT or SIGTERM (Ctrl+C in the terminal, a test's kill) close the window as its close button
+// does: the exit report is printed and --screenshot written.
+volatile std::sig_atomic_t closeRequested = 0;
+
+// The panels' font: DejaVu Sans (Debian's fonts-dejavu-core), for the paper's symbols (Kε, τc,
+// Δs) and units (m², kg/m³, ≤) that ImGui's built-in font has no glyphs for.
+constexpr ImWchar kFontRanges[] = {
+    0x0020, 0x00FF,  // Basic Latin, Latin-1 (², ³, ·, µ, ü)
+    0x0370, 0x03FF,  // Greek
+    0x2010, 0x205E,  // punctuation (–, …)
+    0x2070, 0x209F,  // superscripts and subscripts (ⁿ, ⁻¹)
+    0x2190, 0x21FF,  // arrows
+    0x2200, 0x22FF,  // mathematical operators (−, ≤, ≥, ≈, √, ∇)
+    0,
+};
+
 // Dear ImGui over the window, with its GLFW and OpenGL 3 backends, for the window's lifetime.
 struct ImGuiSession {
   explicit ImGuiSession(GLFWwindow* window) {
     IMGUI_CHECKVERSION();
     ImGui::CreateContext();
     ImGui::GetIO().IniFilename = nullptr;  // no imgui.ini written next to the user's files
+    loadFont();
     ImGui_ImplGlfw_InitForOpenGL(window, true);
     ImGui_ImplOpenGL3_Init("#version 450 core");
   }
@@ -45,7 +66,65 @@ struct ImGuiSession {
   }
   ImGuiSession(const ImGuiSession&) = delete;
   ImGuiSession& operator=(const ImGuiSession&) = delete;
+
+  /// Which font the panels use and whether it has the Greek letters (for the log).
+  std::string fontNote;
+
+ private:
+  void loadFont() {
+    ImFontAtlas& atlas = *ImGui::GetIO().Fonts;
+    ImFont* font = nullptr;
+    if (std::ifstream(SCOUR_UI_FONT).good())  // ImGui asserts on a missing file
+      font = atlas.AddFontFromFileTTF(SCOUR_UI_FONT, 15.0f, nullptr, kFontRanges);
+    if (!font) {
+      atlas.AddFontDefault();
+      fontNote = std::string("font: ") + SCOUR_UI_FONT +
+                 " not found (install fonts-dejavu-core): Greek letters show as '?'";
+      return;
+    }
+    atlas.Build();
+    const bool greek = font->FindGlyphNoFallback(0x03B5) && font->FindGlyphNoFallback(0x03C4) &&
+                       font->FindGlyphNoFallback(0x0394);
+    fontNote = std::string("font: ") + SCOUR_UI_FONT + (greek ? ", with" : ", without") +
+               " the Greek letters (ε τ Δ)";
+  }
 };
+
+// Key presses in the order GLFW reports them. ImGui 1.86 keeps only whether a key is down at each
+// frame, so a tap that goes down and up between two slow frames (one a second on llvmpipe) would
+// be lost; a queue loses none. Made before ImGui's backend, which calls this callback after its own.
+class Keys {
+ public:
+  struct Press {
+    int key, mods;
+  };
+  explicit Keys(GLFWwindow* window) {
+    glfwSetWindowUserPointer(window, this);
+    glfwSetKeyCallback(window, [](GLFWwindow* w, int key, int, int action, int mods) {
+      if (action == GLFW_PRESS) static_cast<Keys*>(glfwGetWindowUserPointer(w))->presses_.push_back({key, mods});
+    });
+  }
+  /// The presses since the last call.
+  std::vector<Press> take() { return std::exchange(presses_, {}); }
+
+ private:
+  std::vector<Press> presses_;
+};
+
+// Ctrl+Z undoes; Ctrl+Y and Ctrl+Shift+Z redo; Escape cancels a source's drag. Not while a text
+// field has the keyboard (it keeps its own Ctrl+Z).
+void applyShortcuts(const std::vector<Keys::Press>& presses, Actions& actions) {
+  for (const Keys::Press& p : presses) {
+    if (ImGui::GetIO().WantCaptureKeyboard) return;
+    const bool ctrl = p.mods & GLFW_MOD_CONTROL, shift = p.mods & GLFW_MOD_SHIFT;
+    if (ctrl && p.key == GLFW_KEY_Z)
+      shift ? actions.redo() : actions.undo();
+    else if (ctrl && p.key == GLFW_KEY_Y)
+      actions.redo();
+    else if (p.key == GLFW_KEY_ESCAPE && actions.drag().index >= 0)
+      actions.cancelDrag();
+  }
+}
 
 // The real mouse: a press on a source's marker drags it (Escape cancels); with a tool on, a
 // click places; otherwise a left drag orbits, a right drag pans and the wheel zooms. Only when
@@ -59,12 +138,12 @@ class Mouse {
     const bool left = glfwGetMouseButton(window, GLFW_MOUSE_BUTTON_LEFT) == GLFW_PRESS;
     int hovered = -1;
     if (cancelled_ && !left) cancelled_ = false;
+    if (dragging_ && actions.drag().index < 0 && left) cancelled_ = true;  // Escape let it go
+    dragging_ = false;
     if (heldByReplay || cancelled_) {
       // A scripted drag holds the (virtual) mouse; after a cancelled drag it rests till released.
     } else if (actions.drag().index >= 0) {
-      if (ImGui::IsKeyPressed(ImGuiKey_Escape))
-        actions.cancelDrag(), cancelled_ = true;
-      else if (!left)
+      if (!left)
         actions.release();
       else if (mx != lastX_ || my != lastY_)
         actions.dragTo(mx, my);
@@ -82,6 +161,7 @@ class Mouse {
       if (wheel != 0) orbit.distance *= std::pow(0.9f, wheel);
     }
     lastX_ = mx, lastY_ = my;
+    dragging_ = actions.drag().index >= 0 && !heldByReplay;
     return hovered;
   }
 
@@ -100,6 +180,7 @@ class Mouse {
   }
 
   bool cancelled_ = false;  // a drag cancelled with Escape: the mouse rests till released
+  bool dragging_ = false;   // the mouse held a source at the end of the last frame
   double lastX_ = 0, lastY_ = 0;
 };
 
@@ -127,21 +208,55 @@ View viewOf(GLFWwindow* window, const Snapshot& snap, const Orbit& orbit, Render
 }
 
 void drawPanels(const Snapshot& snap, const SceneSpec& scene, Actions& actions, int hovered,
-                PanelState& state, const TimePlots& plots, const Renderer& renderer) {
+                PanelState& state, const TimePlots& plots) {
   ImGui_ImplOpenGL3_NewFrame();
   ImGui_ImplGlfw_NewFrame();
   ImGui::NewFrame();
-  const float w = float(renderer.width()), h = float(renderer.height());
   drawMarkers(actions, hovered);
   runPanel(snap, actions, state);
-  parametersPanel(snap, actions);
-  displayPanel(state, w);
-  waterPanel(snap, scene, actions, w);
-  statsPanel(snap, plots, w);
+  parametersPanel(snap, actions, state);
   filePanel(actions, state);
-  logPanel(actions.log(), h);
+  displayPanel(state);
+  waterPanel(snap, scene, actions, state);
+  statsPanel(snap, plots, state);
+  logPanel(actions.log(), state);
   ImGui::Render();
   ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
+}
+
+// The window as the user sees it, and each panel cut out of it (for docs/app.md).
+void writePanelShots(GLFWwindow* window, const PanelState& state, const std::string& dir) {
+  int w = 0, h = 0, fbw = 0, fbh = 0;
+  glfwGetWindowSize(window, &w, &h);
+  glfwGetFramebufferSize(window, &fbw, &fbh);
+  writeRgbaPng(dir + "/window.png", fbw, fbh, readWindowPixels(0, 0, fbw, fbh, fbh));
+  const float sx = float(fbw) / float(std::max(w, 1)), sy = float(fbh) / float(std::max(h, 1));
+  for (size_t i = 0; i < state.drawn.size(); ++i) {
+    const Rect& r = state.drawn[i];
+    const int x = std::clamp(int(r.x * sx), 0, fbw - 1), y = std::clamp(int(r.y * sy), 0, fbh - 1);
+    const int pw = std::clamp(int(r.w * sx), 1, fbw - x), ph = std::clamp(int(r.h * sy), 1, fbh - y);
+    std::string name = panelTitle(PanelId(i));
+    std::transform(name.begin(), name.end(), name.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+    writeRgbaPng(dir + "/panel_" + name + ".png", pw, ph, readWindowPixels(x, y, pw, ph, fbh));
+  }
+}
+
+// The first view: the terrain in the middle the panels leave free.
+Orbit fitOrbit(const Frame& frame, GLFWwindow* window, const Rect& free) {
+  int w = 0, h = 0, fbw = 0, fbh = 0;
+  glfwGetWindowSize(window, &w, &h);
+  glfwGetFramebufferSize(window, &fbw, &fbh);
+  const float aspect = float(std::max(fbw, 16)) / float(std::max(fbh, 16));
+  return fitOrbit(frame, orbitFor(frame), aspect, w, h, free.x, free.y, free.w, free.h);
+}
+
+// The panels' places for this frame, in the window's pixels (ImGui's and the mouse's).
+void layOutPanels(GLFWwindow* window, PanelState& state) {
+  int w = 0, h = 0;
+  glfwGetWindowSize(window, &w, &h);
+  LayoutStyle style;
+  style.title = std::max(ImGui::GetFrameHeight(), 20.0f);  // (before the first frame: 0 + padding)
+  state.layout = layOut(float(w), float(h), state.wishes, style);
 }
 
 }  // namespace
@@ -153,11 +268,13 @@ int runApp(const SceneSpec& spec, const AppOptions& o) {
       createGlContext(GlBackend::kWindow, o.width, o.height, true, "Scour: " + spec.name);
   GLFWwindow* window = context->window();
   glfwSwapInterval(0);
+  Keys keys(window);  // before ImGui's backend, which chains to its callback
   std::optional<ImGuiSession> imgui(std::in_place, window);
 
   SimulationWorker worker(spec, o.paused);
   Renderer renderer(o.width, o.height);
   Actions actions([&](const SimCommand& c) { worker.post(c); }, spec.params.spacing);
+  actions.log().push_back(imgui->fontNote);
   PanelState state;
   state.settings.terrain = RenderSettings::Terrain(o.terrain);
   state.screenshot = [&](const std::string& path) { renderer.writePng(path); };
@@ -169,15 +286,21 @@ int runApp(const SceneSpec& spec, const AppOptions& o) {
   const double opened = glfwGetTime();
   long frames = 0, firstStep = -1;
 
-  while (!glfwWindowShouldClose(window)) {
+  closeRequested = 0;
+  auto request = [](int) { closeRequested = 1; };
+  std::signal(SIGINT, request);
+  std::signal(SIGTERM, request);
+  while (!glfwWindowShouldClose(window) && !closeRequested) {
     glfwPollEvents();
     worker.poll();
     const Snapshot& snap = worker.latest();
-    if (!orbit) orbit = orbitFor(snap.frame);
     messages.read(snap, actions.log());
     plots.addSteps(snap);
+    layOutPanels(window, state);
+    if (!orbit) orbit = fitOrbit(snap.frame, window, state.layout.free);
     actions.setView(viewOf(window, snap, *orbit, renderer));
     replay.play(frames, actions);
+    applyShortcuts(keys.take(), actions);
     const int hovered = mouse.read(window, actions, *orbit, replay.holdsMouse());
 
     const double t0 = glfwGetTime();
@@ -187,7 +310,9 @@ int runApp(const SceneSpec& spec, const AppOptions& o) {
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
     glViewport(0, 0, renderer.width(), renderer.height());
     renderer.blitTo(renderer.width(), renderer.height());
-    drawPanels(snap, worker.spec(), actions, hovered, state, plots, renderer);
+    drawPanels(snap, worker.spec(), actions, hovered, state, plots);
+    if (!o.panelShots.empty() && frames + 1 == o.quitAfterFrames)
+      writePanelShots(window, state, o.panelShots);
     context->swapBuffers();
 
     ++frames;
@@ -196,6 +321,11 @@ int runApp(const SceneSpec& spec, const AppOptions& o) {
     if (o.quitAfterSeconds > 0 && glfwGetTime() - opened >= o.quitAfterSeconds) break;
   }
   if (!o.screenshot.empty()) renderer.writePng(o.screenshot);
+  {
+    int w = 0, h = 0;
+    glfwGetWindowSize(window, &w, &h);
+    actions.log().push_back(checkLayout(state.layout, state.drawn, state.cut, float(w), float(h)));
+  }
   const long errors = context->errors();
   imgui.reset();
   worker.poll();

@@ -16,6 +16,9 @@ struct AppOptions {
   bool paused = false;
   int terrain = 1;           ///< the terrain colours at the start: 0 shaded, 1 erosion, 2 sediment
   std::string replay;        ///< a file of scripted input events (see docs/app.md)
+  /// With quitAfterFrames: the last frame as seen, panels included, as DIR/window.png, and each
+  /// panel as DIR/panel_<title>.png
+  std::string panelShots;
   double quitAfterSeconds = 0;  ///< > 0: close after this long (bench --with-window)
   struct Stats {
     long frames = 0, steps = 0;  ///< drawn; simulated while the window was open

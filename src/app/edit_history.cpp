@@ -4,8 +4,10 @@ namespace scour {
 
 std::vector<SimCommand> EditHistory::perform(Edit e, bool extend) {
   std::vector<SimCommand> commands = e.redo;
-  if (extend && !undo_.empty() && !e.key.empty() && undo_.back().key == e.key)
+  if (extend && !undo_.empty() && !e.key.empty() && undo_.back().key == e.key) {
     undo_.back().redo = std::move(e.redo);
+    undo_.back().what = std::move(e.what);
+  }
   else
     undo_.push_back(std::move(e));
   redo_.clear();

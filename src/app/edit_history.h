@@ -21,7 +21,8 @@ class EditHistory {
  public:
   /// Records an edit and returns the commands that perform it. With `extend`, an edit with the
   /// same key as the newest one merges into it (one slider or source drag, one undo step): the
-  /// newest keeps its undo, from before the drag, and takes the new redo. Clears the redo stack.
+  /// newest keeps its undo, from before the drag, and takes the new redo and `what`. Clears the redo
+  /// stack.
   std::vector<SimCommand> perform(Edit e, bool extend);
   /// Takes back the newest edit and returns it (post its `undo`), or nothing if there is none.
   std::optional<Edit> undo();

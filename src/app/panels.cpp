@@ -1,6 +1,7 @@
 #include "app/panels.h"
 
 #include <imgui.h>
+#include <imgui_internal.h>  // a window's content extent (a cut label)
 
 #include <algorithm>
 #include <cfloat>
@@ -63,7 +64,52 @@ void plot(const char* name, const std::deque<float>& q) {
   std::vector<float> v(q.begin(), q.end());
   char overlay[64];
   std::snprintf(overlay, sizeof overlay, "%.2f ms", v.empty() ? 0.0f : v.back());
-  ImGui::PlotLines(name, v.data(), int(v.size()), 0, overlay, 0.0f, FLT_MAX, {0, 40});
+  ImGui::PlotLines(name, v.data(), int(v.size()), 0, overlay, 0.0f, FLT_MAX, {0, 30});
+}
+
+// One panel at its place in the layout, which it may not be moved or resized from; collapsing it
+// gives its room to the others. What it asked for (its content's height), where it was drawn and
+// whether anything in it was wider than it (a cut label) are kept for the next frame.
+class Panel {
+ public:
+  Panel(PanelState& state, PanelId id, bool startCollapsed = false) : state_(state), id_(id) {
+    const Rect& r = state.layout[id];
+    ImGui::SetNextWindowPos({r.x, r.y}, ImGuiCond_Always);
+    ImGui::SetNextWindowSize({r.w, r.h}, ImGuiCond_Always);
+    if (startCollapsed) ImGui::SetNextWindowCollapsed(true, ImGuiCond_Once);
+    open_ = ImGui::Begin(panelTitle(id), nullptr,
+                         ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize |
+                             ImGuiWindowFlags_NoSavedSettings);
+  }
+  ~Panel() {
+    PanelWish& wish = state_.wishes[size_t(id_)];
+    const ImGuiStyle& style = ImGui::GetStyle();
+    wish.collapsed = ImGui::IsWindowCollapsed();
+    if (open_) {
+      wish.height = ImGui::GetCursorPosY() - style.ItemSpacing.y + style.WindowPadding.y;
+      const ImGuiWindow* w = ImGui::GetCurrentWindow();
+      state_.cut[size_t(id_)] = w->DC.CursorMaxPos.x > w->WorkRect.Max.x + 0.5f;
+    }
+    const ImVec2 pos = ImGui::GetWindowPos(), size = ImGui::GetWindowSize();
+    state_.drawn[size_t(id_)] = {pos.x, pos.y, size.x, size.y};
+    ImGui::End();
+  }
+  Panel(const Panel&) = delete;
+  Panel& operator=(const Panel&) = delete;
+  explicit operator bool() const { return open_; }
+
+ private:
+  PanelState& state_;
+  PanelId id_;
+  bool open_ = false;
+};
+
+// Widgets' width in this panel: what is left of its width after the widest of these labels,
+// which then fit beside them.
+void labelRoom(std::initializer_list<const char*> labels) {
+  float widest = 0;
+  for (const char* l : labels) widest = std::max(widest, ImGui::CalcTextSize(l).x);
+  ImGui::PushItemWidth(-(widest + ImGui::GetStyle().ItemInnerSpacing.x + 1));
 }
 
 void snapshotsSection(const Snapshot& snap, Actions& actions) {
@@ -86,25 +132,35 @@ void snapshotsSection(const Snapshot& snap, Actions& actions) {
 }
 
 void parameterRow(const Snapshot& snap, const ParamInfo& p, Actions& actions) {
-  const std::string key = p.key;
-  const std::string label = std::string(p.label) + " " + p.symbol +
-                            (p.unit && *p.unit ? std::string(" [") + p.unit + "]" : "");
+  const std::string key = p.key, id = "##" + key;
+  // The label on its own line, whole, and the widget the panel's width under it.
+  ImGui::TextWrapped("%s %s%s%s%s", p.label, p.symbol, p.unit && *p.unit ? " [" : "",
+                     p.unit ? p.unit : "", p.unit && *p.unit ? "]" : "");
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("%s (%s): %s  valid range [%g, %g]", key.c_str(), p.symbol, p.help, p.min,
+                      p.max);
+  ImGui::SetNextItemWidth(-FLT_MIN);
   const double current = getParam(snap.params, p);
   if (p.choices) {
     int v = int(current);
     int count = 0;
     while (p.choices[count]) ++count;
-    if (ImGui::Combo(label.c_str(), &v, p.choices, count)) actions.setParameter(key, p.choices[v]);
-  } else {
-    double v = current;
-    const bool logScale = p.min > 0 && p.max / p.min > 100;
-    if (ImGui::SliderScalar(label.c_str(), ImGuiDataType_Double, &v, &p.min, &p.max, "%.4g",
-                            logScale ? ImGuiSliderFlags_Logarithmic : 0))
-      actions.setParameter(key, formatNumber(v),
-                           ImGui::IsItemActive() && !ImGui::IsItemActivated());
+    if (ImGui::Combo(id.c_str(), &v, p.choices, count)) actions.setParameter(key, p.choices[v]);
+    return;
+  }
+  double v = current;
+  const SliderSpan span = sliderSpan(p);
+  if (ImGui::SliderScalar(id.c_str(), ImGuiDataType_Double, &v, &span.lo, &span.hi, "%.4g",
+                          span.log ? ImGuiSliderFlags_Logarithmic : 0)) {
+    // A value typed with Ctrl+click may lie outside the slider's span, not outside the valid range.
+    v = std::clamp(v, p.min, p.max);
+    if (p.imember) v = std::round(v);
+    actions.setParameter(key, formatNumber(v), ImGui::IsItemActive() && !ImGui::IsItemActivated());
   }
   if (ImGui::IsItemHovered())
-    ImGui::SetTooltip("%s (%s): %s  range [%g, %g]", key.c_str(), p.symbol, p.help, p.min, p.max);
+    ImGui::SetTooltip("%s: drag over [%g, %g]%s; Ctrl+click to type any value in [%g, %g]",
+                      key.c_str(), span.lo, span.hi, span.log ? " (logarithmic)" : "", p.min,
+                      p.max);
 }
 
 void sourceRow(const Snapshot& snap, size_t i, Actions& actions) {
@@ -216,9 +272,8 @@ void drawMarkers(const Actions& actions, int hovered) {
 }
 
 void runPanel(const Snapshot& snap, Actions& actions, PanelState& state) {
-  ImGui::SetNextWindowPos({10, 10}, ImGuiCond_FirstUseEver);
-  ImGui::SetNextWindowSize({340, 0}, ImGuiCond_FirstUseEver);
-  ImGui::Begin("Run");
+  Panel panel(state, PanelId::kRun);
+  if (!panel) return;
   if (ImGui::Button(snap.paused ? "Play" : "Pause"))
     actions.command(snap.paused ? SimCommand(cmd::Resume{}) : SimCommand(cmd::Pause{}));
   ImGui::SameLine();
@@ -227,30 +282,29 @@ void runPanel(const Snapshot& snap, Actions& actions, PanelState& state) {
   if (ImGui::Button("Reset")) actions.command(cmd::Reset{});
   ImGui::SameLine();
   if (ImGui::Button("Undo")) actions.undo();
-  if (ImGui::IsItemHovered() && actions.history().nextUndo())
-    ImGui::SetTooltip("%s", actions.history().nextUndo()->what.c_str());
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("Ctrl+Z: %s", actions.history().nextUndo()
+                                        ? actions.history().nextUndo()->what.c_str()
+                                        : "nothing to undo");
   ImGui::SameLine();
   if (ImGui::Button("Redo")) actions.redo();
-  if (ImGui::IsItemHovered() && actions.history().nextRedo())
-    ImGui::SetTooltip("%s", actions.history().nextRedo()->what.c_str());
-  const ImGuiIO& io = ImGui::GetIO();
-  if (!io.WantCaptureKeyboard && io.KeyCtrl) {
-    if (ImGui::IsKeyPressed(ImGuiKey_Z)) actions.undo();
-    if (ImGui::IsKeyPressed(ImGuiKey_Y)) actions.redo();
-  }
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("Ctrl+Y: %s", actions.history().nextRedo()
+                                        ? actions.history().nextRedo()->what.c_str()
+                                        : "nothing to redo");
+  labelRoom({"steps per frame"});
   if (ImGui::SliderInt("steps per frame", &state.stepsPerFrame, 1, 50))
     actions.command(cmd::SetStepsPerFrame{state.stepsPerFrame});
+  ImGui::PopItemWidth();
   const Frame& frame = snap.frame;
-  ImGui::Text("t = %.3f s   step %ld   %zu particles", frame.time, frame.step, frame.particles());
-  ImGui::Text("%.1f steps/s", snap.stepsPerSecond);
+  ImGui::TextWrapped("t = %.3f s, step %ld, %zu particles, %.1f steps/s", frame.time, frame.step,
+                     frame.particles(), snap.stepsPerSecond);
   snapshotsSection(snap, actions);  // whole world states to go back to (worker.h)
-  ImGui::End();
 }
 
-void parametersPanel(const Snapshot& snap, Actions& actions) {
-  ImGui::SetNextWindowPos({10, 140}, ImGuiCond_FirstUseEver);
-  ImGui::SetNextWindowSize({340, 420}, ImGuiCond_FirstUseEver);
-  ImGui::Begin("Parameters");
+void parametersPanel(const Snapshot& snap, Actions& actions, PanelState& state) {
+  Panel panel(state, PanelId::kParameters);
+  if (!panel) return;
   std::string group;
   bool open = false;
   for (const ParamInfo& p : paramTable()) {
@@ -262,87 +316,84 @@ void parametersPanel(const Snapshot& snap, Actions& actions) {
     }
     if (open) parameterRow(snap, p, actions);
   }
-  ImGui::End();
 }
 
-void displayPanel(PanelState& state, float windowWidth) {
+void displayPanel(PanelState& state) {
+  Panel panel(state, PanelId::kDisplay);
+  if (!panel) return;
   RenderSettings& settings = state.settings;
-  ImGui::SetNextWindowPos({windowWidth - 330, 10}, ImGuiCond_FirstUseEver);
-  ImGui::SetNextWindowSize({320, 0}, ImGuiCond_FirstUseEver);
-  ImGui::Begin("Display");
   settings.terrain =
       RenderSettings::Terrain(radioRow(int(settings.terrain), {"shaded", "erosion", "sediment"}));
   ImGui::Checkbox("water surface", &settings.water);
   ImGui::Checkbox("reflections", &settings.reflections);
   ImGui::SameLine();
   ImGui::Checkbox("refraction", &settings.refraction);
-  ImGui::SameLine();
   ImGui::Checkbox("caustics", &settings.caustics);
   ImGui::Text("particles:");
   ImGui::SameLine();
   settings.particles =
       RenderSettings::Particles(radioRow(int(settings.particles), {"off", "C", "speed"}));
-  ImGui::TextDisabled(
-      "left drag: orbit, right drag: pan, wheel: zoom;\ndrag a source's marker to move it");
-  ImGui::End();
+  ImGui::TextDisabled("left drag: orbit, right drag: pan,");
+  ImGui::TextDisabled("wheel: zoom");
 }
 
-void waterPanel(const Snapshot& snap, const SceneSpec& scene, Actions& actions, float windowWidth) {
+void waterPanel(const Snapshot& snap, const SceneSpec& scene, Actions& actions, PanelState& state) {
+  Panel panel(state, PanelId::kWater);
+  if (!panel) return;
   const float spacing = snap.frame.spacing;
-  ImGui::SetNextWindowPos({windowWidth - 330, 200}, ImGuiCond_FirstUseEver);
-  ImGui::SetNextWindowSize({320, 0}, ImGuiCond_FirstUseEver);
-  ImGui::Begin("Water");
-  for (auto [t, label] : {std::pair{Tool::kSource, "click the terrain to place a source"},
-                          std::pair{Tool::kSink, "click the terrain to place a sink"},
-                          std::pair{Tool::kBrush, "brush: click to paint water"}}) {
+  for (auto [t, label] : {std::pair{Tool::kSource, "click the terrain: a source"},
+                          std::pair{Tool::kSink, "click the terrain: a sink"},
+                          std::pair{Tool::kBrush, "click the terrain: paint water"}}) {
     bool on = actions.tool == t;
     if (ImGui::Checkbox(label, &on)) actions.toggle(t, on);
   }
-  ImGui::TextDisabled("drag a source's marker to move it (one undo step)");
-  ImGui::SliderFloat("brush radius [m]", &actions.brushRadius, spacing, 30 * spacing, "%.3g");
-  ImGui::SliderFloat("new sink half-size [m]", &actions.sinkRadius, 0.5f * spacing, 30 * spacing,
-                     "%.3g", ImGuiSliderFlags_AlwaysClamp);
+  ImGui::TextDisabled("drag a source's marker to move it");
+  labelRoom({"sink size [m]", "direction", "rate [L/s]", "radius [m]", "half-size [m]"});
+  ImGui::SliderFloat("brush [m]", &actions.brushRadius, spacing, 30 * spacing, "%.3g");
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("the water brush's radius");
+  ImGui::SliderFloat("sink size [m]", &actions.sinkRadius, 0.5f * spacing, 30 * spacing, "%.3g",
+                     ImGuiSliderFlags_AlwaysClamp);
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("half the size of a sink placed by a click");
   Effects effects = scene.effects;
   if (!scene.rain.empty() && ImGui::Checkbox("rain (on reset)", &effects.rain)) {
     actions.command(cmd::SetEffects{effects});
     actions.command(cmd::Reset{});
   }
-  ImGui::Text("%ld particles from sources, %ld painted", snap.emitted, snap.painted);
+  ImGui::TextWrapped("%ld particles from sources, %ld painted", snap.emitted, snap.painted);
   for (size_t i = 0; i < snap.sources.size(); ++i) sourceRow(snap, i, actions);
   ImGui::Separator();
-  ImGui::Text("%zu sinks; %ld particles removed by them", snap.sinks.size(), snap.removedBySinks);
+  ImGui::TextWrapped("%zu sinks; %ld particles removed by them", snap.sinks.size(),
+                     snap.removedBySinks);
   for (size_t i = 0; i < snap.sinks.size(); ++i) sinkRow(snap, i, actions);
-  ImGui::End();
+  ImGui::PopItemWidth();
 }
 
-void statsPanel(const Snapshot& snap, const TimePlots& plots, float windowWidth) {
-  ImGui::SetNextWindowPos({windowWidth - 330, 380}, ImGuiCond_FirstUseEver);
-  ImGui::SetNextWindowSize({320, 0}, ImGuiCond_FirstUseEver);
-  ImGui::Begin("Stats");
+void statsPanel(const Snapshot& snap, const TimePlots& plots, PanelState& state) {
+  Panel panel(state, PanelId::kStats);
+  if (!panel) return;
+  labelRoom({"boundary"});
   plot("SPH", plots.sph);
   plot("erosion", plots.erosion);
   plot("boundary", plots.boundary);
   plot("render", plots.render);
-  ImGui::Text("soil: terrain %.6g  suspended %.3g  removed %.3g m3", snap.soil.terrain,
-              snap.soil.suspended, snap.soil.removed);
-  ImGui::Text("budget error %.2e (relative)", snap.soil.relativeError());
-  ImGui::End();
+  ImGui::PopItemWidth();
+  ImGui::TextWrapped("soil: terrain %.6g, suspended %.3g, removed %.3g m³", snap.soil.terrain,
+                     snap.soil.suspended, snap.soil.removed);
+  ImGui::TextWrapped("budget error %.2e (relative)", snap.soil.relativeError());
 }
 
 void filePanel(Actions& actions, PanelState& state) {
-  ImGui::SetNextWindowPos({360, 10}, ImGuiCond_FirstUseEver);
-  ImGui::SetNextWindowSize({360, 0}, ImGuiCond_FirstUseEver);
-  ImGui::Begin("File");
+  Panel panel(state, PanelId::kFile);
+  if (!panel) return;
+  labelRoom({"name"});
   ImGui::InputText("name", state.path, sizeof state.path);
-  ImGui::TextDisabled(
-      "files are <name>.json, .ckpt, _height.png, .r32, .obj, _erosion.png, _shot.png");
+  ImGui::PopItemWidth();
+  ImGui::TextDisabled("files: <name>.json, .ckpt, _height.png, .r32,");
+  ImGui::TextDisabled(".obj, _erosion.png, _shot.png");
   const std::string base = state.path;
   using K = cmd::Save::Kind;
   if (ImGui::Button("save scene")) actions.command(cmd::Save{K::kScene, base + ".json"});
   ImGui::SameLine();
-  if (ImGui::Button("save checkpoint")) actions.command(cmd::Save{K::kCheckpoint, base + ".ckpt"});
-  ImGui::SameLine();
-  if (ImGui::Button("resume checkpoint")) actions.command(cmd::LoadCheckpoint{base + ".ckpt"});
   if (ImGui::Button("open scene")) {
     try {
       actions.command(cmd::Load{loadSceneFile(base + ".json")});
@@ -350,14 +401,17 @@ void filePanel(Actions& actions, PanelState& state) {
       actions.log().push_back(e.what());
     }
   }
+  if (ImGui::Button("save checkpoint")) actions.command(cmd::Save{K::kCheckpoint, base + ".ckpt"});
+  ImGui::SameLine();
+  if (ImGui::Button("resume checkpoint")) actions.command(cmd::LoadCheckpoint{base + ".ckpt"});
   if (ImGui::Button("height PNG")) actions.command(cmd::Save{K::kHeightPng, base + "_height.png"});
   ImGui::SameLine();
   if (ImGui::Button("raw float")) actions.command(cmd::Save{K::kHeightRaw, base + ".r32"});
   ImGui::SameLine();
   if (ImGui::Button("mesh OBJ")) actions.command(cmd::Save{K::kMesh, base + ".obj"});
-  ImGui::SameLine();
   if (ImGui::Button("erosion map"))
     actions.command(cmd::Save{K::kErosionMap, base + "_erosion.png"});
+  ImGui::SameLine();
   if (ImGui::Button("screenshot")) {
     try {
       state.screenshot(base + "_shot.png");
@@ -366,15 +420,18 @@ void filePanel(Actions& actions, PanelState& state) {
       actions.log().push_back(e.what());
     }
   }
-  ImGui::End();
 }
 
-void logPanel(const std::vector<std::string>& log, float windowHeight) {
-  ImGui::SetNextWindowPos({10, windowHeight - 130}, ImGuiCond_FirstUseEver);
-  ImGui::SetNextWindowSize({600, 120}, ImGuiCond_FirstUseEver);
-  ImGui::Begin("Log");
-  for (const std::string& line : log) ImGui::TextWrapped("%s", line.c_str());
-  ImGui::End();
+void logPanel(const std::vector<std::string>& log, PanelState& state) {
+  {
+    Panel panel(state, PanelId::kLog);
+    if (panel) {
+      for (const std::string& line : log) ImGui::TextWrapped("%s", line.c_str());
+      if (log.size() != state.logLines) ImGui::SetScrollHereY(1.0f);  // the newest in sight
+    }
+  }
+  state.logLines = log.size();
+  state.wishes[size_t(PanelId::kLog)].height = LayoutStyle{}.logHeight;
 }
 
 }  // namespace scour

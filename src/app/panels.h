@@ -9,6 +9,7 @@
 #include <string>
 
 #include "app/actions.h"
+#include "app/layout.h"
 #include "render/renderer.h"
 
 namespace scour {
@@ -28,6 +29,13 @@ struct TimePlots {
 /// What the panels keep between frames besides the scene.
 struct PanelState {
   RenderSettings settings;
+  /// Where the panels go this frame (from the window's size and `wishes`), what each asked for
+  /// in the last one, where each was drawn and whether something in it was cut.
+  Layout layout;
+  std::array<PanelWish, size_t(PanelId::kCount)> wishes;
+  std::array<Rect, size_t(PanelId::kCount)> drawn;
+  std::array<bool, size_t(PanelId::kCount)> cut{};
+  size_t logLines = 0;
   int stepsPerFrame = 1;
   char path[512] = "scour_out";  ///< the File panel's base name
   /// Writes the window's picture to a path (the renderer's).
@@ -41,16 +49,16 @@ void drawMarkers(const Actions& actions, int hovered);
 /// Play, pause, step, reset, undo, redo, steps per frame, the snapshots.
 void runPanel(const Snapshot& snap, Actions& actions, PanelState& state);
 /// Every parameter of the table, by group: sliders (logarithmic over a wide range), choices.
-void parametersPanel(const Snapshot& snap, Actions& actions);
+void parametersPanel(const Snapshot& snap, Actions& actions, PanelState& state);
 /// What is drawn: terrain colours, water surface and its effects, particles.
-void displayPanel(PanelState& state, float windowWidth);
+void displayPanel(PanelState& state);
 /// The tools, rain, and every source and sink with its settings.
-void waterPanel(const Snapshot& snap, const SceneSpec& scene, Actions& actions, float windowWidth);
+void waterPanel(const Snapshot& snap, const SceneSpec& scene, Actions& actions, PanelState& state);
 /// Time plots and the soil budget.
-void statsPanel(const Snapshot& snap, const TimePlots& plots, float windowWidth);
+void statsPanel(const Snapshot& snap, const TimePlots& plots, PanelState& state);
 /// Save and open scenes, checkpoints, terrain and pictures.
 void filePanel(Actions& actions, PanelState& state);
 /// The actions' and the worker's messages.
-void logPanel(const std::vector<std::string>& log, float windowHeight);
+void logPanel(const std::vector<std::string>& log, PanelState& state);
 
 }  // namespace scour

@@ -3,6 +3,7 @@
 #include <Eigen/LU>
 #include <algorithm>
 #include <cmath>
+#include <vector>
 
 namespace scour {
 
@@ -28,6 +29,39 @@ Orbit orbitFor(const Frame& f) {
   o.distance = d.norm();
   o.pitch = std::asin(d.y() / o.distance);
   o.yaw = std::atan2(d.x(), d.z());
+  return o;
+}
+
+Orbit fitOrbit(const Frame& f, Orbit o, float aspect, int w, int h, float x, float y, float rw,
+               float rh) {
+  if (f.nx < 2 || f.nz < 2 || rw < 16 || rh < 16) return o;
+  // The terrain as a 9 × 9 lattice of its points: its outline in the picture, near enough.
+  std::vector<Eigen::Vector3f> points;
+  for (int a = 0; a <= 8; ++a)
+    for (int b = 0; b <= 8; ++b) {
+      const int i = (f.nx - 1) * a / 8, k = (f.nz - 1) * b / 8;
+      points.emplace_back(float(f.x0 + i * f.dx), f.height[size_t(k) * size_t(f.nx) + size_t(i)],
+                          float(f.z0 + k * f.dz));
+    }
+  for (int iteration = 0; iteration < 40; ++iteration) {
+    const Camera c = o.camera();
+    Eigen::Vector2f lo(1e30f, 1e30f), hi(-1e30f, -1e30f), p;
+    for (const Eigen::Vector3f& q : points) {
+      if (!toWindow(c, aspect, q, w, h, p)) return o;  // behind the camera: leave it
+      lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
+    }
+    // Pan the picture's centre onto the rectangle's, then zoom to fill 90 % of it.
+    const Eigen::Vector2f offset = Eigen::Vector2f(x + 0.5f * rw, y + 0.5f * rh) - 0.5f * (lo + hi);
+    const float fill = std::max((hi.x() - lo.x()) / rw, (hi.y() - lo.y()) / rh) / 0.9f;
+    const Eigen::Vector3f forward = (c.target - c.eye).normalized();
+    const Eigen::Vector3f right = forward.cross(Eigen::Vector3f::UnitY()).normalized();
+    const Eigen::Vector3f up = right.cross(forward);
+    const float perPixel =
+        2 * o.distance * std::tan(0.5f * c.fov_deg * float(M_PI) / 180) / float(h);
+    o.target -= perPixel * (offset.x() * right - offset.y() * up);
+    o.distance *= std::clamp(fill, 0.5f, 2.0f);
+    if (offset.norm() < 0.5f && std::abs(fill - 1) < 1e-3f) break;
+  }
   return o;
 }
 

@@ -20,6 +20,12 @@ struct Orbit {
 /// The orbit that looks as overviewCamera(f) does.
 Orbit orbitFor(const Frame& f);
 
+/// The orbit panned and zoomed (same yaw and pitch) so the terrain fills the window rectangle at
+/// (x, y) of size rw × rh in a w × h window, as far as it can: the part of the window the
+/// panels leave free.
+Orbit fitOrbit(const Frame& f, Orbit o, float aspect, int w, int h, float x, float y, float rw,
+               float rh);
+
 /// The frame's terrain height at (x, z), bilinear between vertices; false off the grid.
 bool terrainHeight(const Frame& f, double x, double z, float& height);
 

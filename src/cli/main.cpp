@@ -22,7 +22,9 @@ int main(int argc, char** argv) {
   app.add_option("--scale", windowScale, "Scale the preset's particle count (window)")->check(kPositive);
   app.add_option("--size", windowSize, "Window size WxH (default 1280x720)");
   app.add_option("--quit-after-frames", window.quitAfterFrames, "Close the window after N frames")->check(kPositive);
+  app.add_option("--quit-after-seconds", window.quitAfterSeconds, "Close the window after S seconds")->check(kPositive);
   app.add_option("--screenshot", window.screenshot, "On closing, save the last frame's picture (.png)");
+  app.add_option("--panel-shots", window.panelShots, "With --quit-after-frames: the last frame with its panels as DIR/window.png and each panel as DIR/panel_<name>.png");
   app.add_flag("--paused", window.paused, "Start paused");
   app.add_option("--replay", window.replay, "Play scripted input events from a file (docs/app.md)");
   std::string windowTerrain = "erosion";
@@ -56,6 +58,8 @@ int main(int argc, char** argv) {
     // The window.
     std::tie(window.width, window.height) = parseSize(windowSize, 64);
     if (!window.screenshot.empty()) requirePng("--screenshot", window.screenshot);
+    if (!window.panelShots.empty() && window.quitAfterFrames <= 0)
+      throw InputError("--panel-shots: needs --quit-after-frames (the shots are of the last frame)");
     window.terrain = int(parseTerrain(windowTerrain));
     const Scene scene = loadScene(windowScene, windowScale, 0, {});
     if (!window.replay.empty()) {

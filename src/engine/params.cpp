@@ -44,19 +44,29 @@ ParamInfo choice(const char* key, const char* label, const char* help, const cha
   return i;
 }
 
+// The span of the window's slider, where the valid range is too wide for a hand (Kε's valid
+// [0, 10⁴] on 300 pixels moved 0.1 to 7,000 in half a slider).
+ParamInfo slider(ParamInfo i, double lo, double hi) {
+  i.slider_min = lo, i.slider_max = hi;
+  return i;
+}
+
 std::vector<ParamInfo> makeTable() {
   using P = SimParams;
   return {
-      real("fluid.spacing", "Particle spacing", "Δs", "m", 1e-4, 100.0,
-           "Distance between neighbouring fluid particles at rest.", &P::spacing),
+      slider(real("fluid.spacing", "Particle spacing", "Δs", "m", 1e-4, 100.0,
+                  "Distance between neighbouring fluid particles at rest.", &P::spacing),
+             0.001, 1.0),
       real("fluid.support_over_spacing", "Support / spacing", "h/Δs", "-", 1.5, 3.0,
            "Kernel support radius in particle spacings (paper: h ≈ 2Δs).",
            &P::support_over_spacing),
-      real("fluid.rest_density", "Rest density", "ρ0", "kg/m³", 1.0, 1e5,
-           "Density of water at rest.", &P::rest_density),
-      real("fluid.sound_speed", "Speed of sound", "c_s", "m/s", 0.1, 1e4,
-           "Numerical speed of sound of the weakly compressible fluid; ≥ 10·|v|max.",
-           &P::sound_speed),
+      slider(real("fluid.rest_density", "Rest density", "ρ0", "kg/m³", 1.0, 1e5,
+                  "Density of water at rest.", &P::rest_density),
+             100.0, 1e4),
+      slider(real("fluid.sound_speed", "Speed of sound", "c_s", "m/s", 0.1, 1e4,
+                  "Numerical speed of sound of the weakly compressible fluid; ≥ 10·|v|max.",
+                  &P::sound_speed),
+             1.0, 1000.0),
       choice<&P::eos>("fluid.eos", "Equation of state",
                       "tait: p = B((ρ/ρ0)^7 − 1); ideal_gas: Müller's p = c_s²(ρ − ρ0).",
                       kEosChoices),
@@ -67,12 +77,15 @@ std::vector<ParamInfo> makeTable() {
       real("fluid.density_diffusion", "Density diffusion", "δ", "-", 0.0, 1.0,
            "δ-SPH diffusion of the continuity density (Molteni & Colagrossi 2009).",
            &P::density_diffusion),
-      real("fluid.viscosity", "Viscosity", "ν", "m²/s", 0.0, 10.0,
-           "Artificial kinematic viscosity (viscosity-kernel Laplacian).", &P::viscosity),
-      real("fluid.surface_tension", "Surface tension", "κ", "m³/s²", 0.0, 1.0,
-           "Becker–Teschner cohesion strength.", &P::surface_tension),
-      real("fluid.gravity", "Gravity", "g", "m/s²", 0.0, 100.0,
-           "Gravitational acceleration, pointing along −y.", &P::gravity),
+      slider(real("fluid.viscosity", "Viscosity", "ν", "m²/s", 0.0, 10.0,
+                  "Artificial kinematic viscosity (viscosity-kernel Laplacian).", &P::viscosity),
+             1e-06, 1.0),
+      slider(real("fluid.surface_tension", "Surface tension", "κ", "m³/s²", 0.0, 1.0,
+                  "Becker–Teschner cohesion strength.", &P::surface_tension),
+             1e-05, 1.0),
+      slider(real("fluid.gravity", "Gravity", "g", "m/s²", 0.0, 100.0,
+                  "Gravitational acceleration, pointing along −y.", &P::gravity),
+             0.0, 30.0),
       real("time.max_dt", "Maximum time step", "Δt", "s", 1e-7, 0.01,
            "Upper bound on the adaptive time step (paper: 2 ms).", &P::max_dt),
       real("time.cfl", "CFL factor", "λ", "-", 0.01, 0.4,
@@ -85,40 +98,52 @@ std::vector<ParamInfo> makeTable() {
            "Δt ≤ λ_ρ / max |dρ/dt|/ρ: the largest relative density change in a step. Keeps "
            "splashes that collide from a one-step pressure spike (`scour stress`).",
            &P::density_cfl),
-      real("time.fixed_dt", "Fixed time step", "Δt", "s", 0.0, 0.01,
-           "If > 0, use this fixed step instead of the adaptive one.", &P::fixed_dt),
-      real("boundary.penalty_stiffness", "Penalty stiffness", "K_S", "1/s²", 0.0, 1e12,
-           "Eq. (6) spring constant per unit mass; 0 derives it from the water depth.",
-           &P::penalty_stiffness),
-      real("boundary.penalty_damping", "Penalty damping", "K_D", "1/s", 0.0, 1e8,
-           "Eq. (6) damping per unit mass; 0 = critical damping.", &P::penalty_damping),
+      slider(real("time.fixed_dt", "Fixed time step", "Δt", "s", 0.0, 0.01,
+                  "If > 0, use this fixed step instead of the adaptive one.", &P::fixed_dt),
+             1e-06, 0.01),
+      slider(real("boundary.penalty_stiffness", "Penalty stiffness", "K_S", "1/s²", 0.0, 1e12,
+                  "Eq. (6) spring constant per unit mass; 0 derives it from the water depth.",
+                  &P::penalty_stiffness),
+             1000.0, 1e9),
+      slider(real("boundary.penalty_damping", "Penalty damping", "K_D", "1/s", 0.0, 1e8,
+                  "Eq. (6) damping per unit mass; 0 = critical damping.", &P::penalty_damping),
+             0.1, 100000),
       real("boundary.contact_over_spacing", "Contact distance / spacing", "", "-", 0.0, 2.0,
            "Distance from terrain and walls within which eq. (6) acts, in Δs.",
            &P::contact_over_spacing),
-      real("boundary.friction", "No-slip friction", "μ_b", "m³/s", 0.0, 1e3,
-           "Eq. (8) friction constant over boundary particles.", &P::boundary_friction),
-      real("erosion.k_eps", "Erosion strength", "Kε", "kg/(m²·s·Pa)", 0.0, 1e4,
-           "Partheniades erosion rate per unit excess shear stress.", &P::k_eps),
-      real("erosion.tau_c", "Critical shear stress", "τc", "Pa", 0.0, 1e6,
-           "Shear stress below which the soil does not erode.", &P::tau_c),
-      real("erosion.shear_k", "Shear constant", "K", "Pa·sⁿ", 0.0, 1e6,
-           "K in the power law τ = K θⁿ.", &P::shear_k),
+      slider(real("boundary.friction", "No-slip friction", "μ_b", "m³/s", 0.0, 1e3,
+                  "Eq. (8) friction constant over boundary particles.", &P::boundary_friction),
+             1e-06, 1.0),
+      slider(real("erosion.k_eps", "Erosion strength", "Kε", "kg/(m²·s·Pa)", 0.0, 1e4,
+                  "Partheniades erosion rate per unit excess shear stress.", &P::k_eps),
+             0.0001, 10.0),
+      slider(real("erosion.tau_c", "Critical shear stress", "τc", "Pa", 0.0, 1e6,
+                  "Shear stress below which the soil does not erode.", &P::tau_c),
+             0.0001, 100.0),
+      slider(real("erosion.shear_k", "Shear constant", "K", "Pa·sⁿ", 0.0, 1e6,
+                  "K in the power law τ = K θⁿ.", &P::shear_k),
+             0.001, 1000.0),
       real("erosion.shear_n", "Flow behaviour index", "n", "-", 0.05, 2.0,
            "n in the power law τ = K θⁿ (paper: 0.5, shear thinning).", &P::shear_n),
-      real("sediment.diffusion", "Sediment diffusivity", "D", "m²/s", 0.0, 10.0,
-           "Kinematic diffusivity of suspended sediment (paper: 0.1).", &P::diffusion),
-      real("sediment.grain_radius", "Grain radius", "r_s", "m", 1e-6, 0.1,
-           "Radius of a sediment grain in the settling velocity, eq. (17).", &P::grain_radius),
-      real("sediment.density", "Sediment density", "ρs", "kg/m³", 1.0, 1e5,
-           "Density of the soil and of suspended sediment.", &P::sediment_density),
+      slider(real("sediment.diffusion", "Sediment diffusivity", "D", "m²/s", 0.0, 10.0,
+                  "Kinematic diffusivity of suspended sediment (paper: 0.1).", &P::diffusion),
+             1e-06, 1.0),
+      slider(
+          real("sediment.grain_radius", "Grain radius", "r_s", "m", 1e-6, 0.1,
+               "Radius of a sediment grain in the settling velocity, eq. (17).", &P::grain_radius),
+          1e-06, 0.01),
+      slider(real("sediment.density", "Sediment density", "ρs", "kg/m³", 1.0, 1e5,
+                  "Density of the soil and of suspended sediment.", &P::sediment_density),
+             500.0, 1e4),
       real("sediment.c_max", "Maximum concentration", "Cmax", "-", 0.01, 1.0,
            "Largest solid volume fraction a fluid particle can carry.", &P::c_max),
       real("sediment.rz_exponent", "Richardson–Zaki exponent", "e", "-", 1.0, 10.0,
            "Exponent of the hindered settling f(C) = 1 − (C/Cmax)^e (4 < e < 5.5).",
            &P::rz_exponent),
-      real("sediment.settling_viscosity", "Settling viscosity", "μ", "Pa·s", 1e-6, 1e3,
-           "μ of eq. (17); the default gives v_s ≈ 0.1 m/s for 1 mm grains.",
-           &P::settling_viscosity),
+      slider(real("sediment.settling_viscosity", "Settling viscosity", "μ", "Pa·s", 1e-6, 1e3,
+                  "μ of eq. (17); the default gives v_s ≈ 0.1 m/s for 1 mm grains.",
+                  &P::settling_viscosity),
+             1e-05, 10.0),
       choice<&P::advection>(
           "sediment.advection", "Settling advection",
           "donor_acceptor: eq. (16) as pairwise volume fluxes (conservative); naive_gradient: "
@@ -129,16 +154,18 @@ std::vector<ParamInfo> makeTable() {
           "consistent: Σ V 2D (C_i − C_j) F/|r| (model.md); printed: eq. (19) as printed, "
           "Σ m/(ρ_i ρ_j) D (C_i − C_j) F.",
           kDiffusionFormChoices),
-      integer("engine.reorder_every", "Reorder interval", "", "steps", 1, 1e6,
-              "Steps between Z-order reorders of the particle arrays.", &P::reorder_every),
+      slider(integer("engine.reorder_every", "Reorder interval", "", "steps", 1.0, 1e6,
+                     "Steps between Z-order reorders of the particle arrays.", &P::reorder_every),
+             1.0, 1000.0),
       choice<&P::neighbor_search>(
           "engine.neighbor_search", "Neighbor search",
           "grid: uniform cells of edge h; kd_tree: nanoflann kd-tree rebuilt every step (the "
           "paper's). Same neighbor sets.",
           kNeighborChoices),
-      real("engine.max_penetration_over_ds", "Penetration limit", "", "Δs", 0.0, 100.0,
-           "A particle deeper than this below the terrain stops the run.",
-           &P::max_penetration_over_ds),
+      slider(real("engine.max_penetration_over_ds", "Penetration limit", "", "Δs", 0.0, 100.0,
+                  "A particle deeper than this below the terrain stops the run.",
+                  &P::max_penetration_over_ds),
+             0.05, 10.0),
   };
 }
 
@@ -163,6 +190,12 @@ size_t editDistance(std::string_view a, std::string_view b) {
     }
   }
   return row[b.size()];
+}
+
+SliderSpan sliderSpan(const ParamInfo& i) {
+  const bool own = i.slider_min < i.slider_max;
+  const double lo = own ? i.slider_min : i.min, hi = own ? i.slider_max : i.max;
+  return {lo, hi, lo > 0 && hi / lo >= 100};
 }
 
 const std::vector<ParamInfo>& paramTable() {

@@ -125,6 +125,10 @@ struct ParamInfo {
   const char* unit;
   double min, max;  ///< valid closed range
   const char* help;
+  /// The window's slider spans [slider_min, slider_max] (within the valid range; 0, 0: the valid
+  /// range), logarithmically when slider_min > 0 and the span is 100× or more. Values of the
+  /// valid range outside it are typed (Ctrl+click).
+  double slider_min = 0, slider_max = 0;
   double SimParams::*dmember = nullptr;
   int SimParams::*imember = nullptr;
   /// A choice (an enum field): the names of its values in enumerator order, nullptr-terminated,
@@ -135,6 +139,13 @@ struct ParamInfo {
 };
 
 const std::vector<ParamInfo>& paramTable();
+
+/// What the window's slider of a number spans, and whether logarithmically.
+struct SliderSpan {
+  double lo, hi;
+  bool log;
+};
+SliderSpan sliderSpan(const ParamInfo& i);
 
 /// Looks up a key; nullptr if unknown.
 const ParamInfo* findParam(std::string_view key);

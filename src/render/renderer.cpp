@@ -397,17 +397,33 @@ std::vector<unsigned char> Renderer::readPixels() const {
 }
 
 void Renderer::writePng(const std::string& path) const {
-  const std::vector<unsigned char> rgba = readPixels();
-  std::vector<unsigned char> rgb(size_t(width_) * height_ * 3);
-  for (size_t i = 0; i < size_t(width_) * height_; ++i)
+  writeRgbaPng(path, width_, height_, readPixels());
+}
+
+void writeRgbaPng(const std::string& path, int width, int height,
+                  const std::vector<unsigned char>& rgba) {
+  std::vector<unsigned char> rgb(size_t(width) * size_t(height) * 3);
+  for (size_t i = 0; i < size_t(width) * size_t(height); ++i)
     for (int k = 0; k < 3; ++k) rgb[3 * i + size_t(k)] = rgba[4 * i + size_t(k)];
   std::string png;
   auto append = [](void* context, void* data, int size) {
     static_cast<std::string*>(context)->append(static_cast<const char*>(data), size_t(size));
   };
-  if (!stbi_write_png_to_func(append, &png, width_, height_, 3, rgb.data(), width_ * 3))
+  if (!stbi_write_png_to_func(append, &png, width, height, 3, rgb.data(), width * 3))
     throw GlError(path + ": cannot encode the PNG");
   writeAtomically(path, [&](std::ostream& o) { o.write(png.data(), std::streamsize(png.size())); });
+}
+
+std::vector<unsigned char> readWindowPixels(int x, int y, int width, int height, int framebufferHeight) {
+  std::vector<unsigned char> rgba(size_t(width) * size_t(height) * 4), rows(rgba.size());
+  glBindFramebuffer(GL_READ_FRAMEBUFFER, 0);
+  glReadBuffer(GL_BACK);
+  glPixelStorei(GL_PACK_ALIGNMENT, 1);
+  glReadPixels(x, framebufferHeight - y - height, width, height, GL_RGBA, GL_UNSIGNED_BYTE, rgba.data());
+  const size_t row = size_t(width) * 4;
+  for (int r = 0; r < height; ++r)
+    std::copy_n(rgba.begin() + long(size_t(height - 1 - r) * row), row, rows.begin() + long(size_t(r) * row));
+  return rows;
 }
 
 void Renderer::blitTo(int width, int height) const {

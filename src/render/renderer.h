@@ -93,4 +93,12 @@ class Renderer {
   Eigen::Matrix4f lightClipFromWorld_ = Eigen::Matrix4f::Identity();
 };
 
+/// Writes an RGBA picture, top row first, as an RGB PNG (all or nothing).
+void writeRgbaPng(const std::string& path, int width, int height,
+                  const std::vector<unsigned char>& rgba);
+/// The window's back buffer (what the next swap shows: the picture and the panels), the rectangle
+/// at (x, y) of width × height in window pixels from the top-left corner; top row first.
+std::vector<unsigned char> readWindowPixels(int x, int y, int width, int height,
+                                            int framebufferHeight);
+
 }  // namespace scour

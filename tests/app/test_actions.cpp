@@ -113,8 +113,13 @@ TEST_CASE("a parameter edit undoes to the value before it, a slider drag being o
   Actions actions(posted.post(), snap.frame.spacing);
   actions.setView(viewOf(snap));
   actions.setParameter("erosion.k_eps", "0.5");
+  snap.params.k_eps = 0.5;  // the worker has applied the drag's first value
+  actions.setView(viewOf(snap));
   actions.setParameter("erosion.k_eps", "0.75", true);
   CHECK(posted.last<cmd::SetParam>().value == "0.75");
+  // The one edit names the value before the drag, not one from its middle.
+  REQUIRE(actions.history().nextUndo() != nullptr);
+  CHECK(actions.history().nextUndo()->what == "erosion.k_eps = 0.75 (was 0.25)");
   actions.undo();
   CHECK(posted.last<cmd::SetParam>().value == "0.25");
   CHECK(actions.history().nextUndo() == nullptr);

@@ -33,27 +33,27 @@ echo "bad window options refused"
 cat > "$tmp/script.txt" <<'SCRIPT'
 # frame action arguments
 3 place on
-4 click 320 200
+4 click 600 330
 5 place off
 6 set erosion.k_eps 0.35
 10 set erosion.k_eps 0.5
 14 press undo
-20 drag 320 200 360 165   # from the source's foot to the valley floor further down
+20 drag 600 330 700 260   # from the source's foot to the valley floor further down
 32 press undo
 34 press undo
 38 press redo
 40 press redo
 44 sink on
-46 click 250 215
+46 click 560 420
 48 press snapshot
 SCRIPT
-out=$(xvfb-run -a -s "-screen 0 800x600x24" "$scour" --scale 0.2 --size 640x400 --replay "$tmp/script.txt" \
+out=$(xvfb-run -a -s "-screen 0 1280x720x24" "$scour" --scale 0.2 --size 1280x720 --replay "$tmp/script.txt" \
       --quit-after-frames 120 2>&1)
 grep -q "erosion.k_eps 0.35" <<<"$out" || { echo "Kε not set: $out"; exit 1; }
 grep -q "log: source placed at" <<<"$out" || { echo "no source placed: $out"; exit 1; }
-grep -q "log: undo: erosion.k_eps = 0.5" <<<"$out" || { echo "no undo: $out"; exit 1; }
+grep -q "log: undo: erosion.k_eps = 0.5 (was 0.35)" <<<"$out" || { echo "no undo: $out"; exit 1; }
 history=$(grep -E "^log: (undo|redo): " <<<"$out" | tr '\n' '|')
-[ "$history" = "log: undo: erosion.k_eps = 0.5|log: undo: move source 1|log: undo: erosion.k_eps = 0.35|log: redo: erosion.k_eps = 0.35|log: redo: move source 1|" ] \
+[ "$history" = "log: undo: erosion.k_eps = 0.5 (was 0.35)|log: undo: move source 1|log: undo: erosion.k_eps = 0.35 (was 0.1)|log: redo: erosion.k_eps = 0.35 (was 0.1)|log: redo: move source 1|" ] \
   || { echo "the drag is not one undo step: $history"; exit 1; }
 grep -q "log: sink placed at" <<<"$out" && grep -q "; 2 sinks, removed" <<<"$out" || { echo "no sink placed: $out"; exit 1; }
 grep -q "; 1 snapshots;" <<<"$out" || { echo "no snapshot: $out"; exit 1; }

@@ -3,6 +3,7 @@
 // work and no invariant broken. The terrain generators are deterministic and shaped as documented.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <fstream>
 #include <set>
 
@@ -157,4 +158,32 @@ TEST_CASE("each scene's scaling rule sets what --scale does", "[presets][builtin
   CHECK(double(buildScene(presetSpec("block", 0.25)).desc.particles.size()) ==
         Approx(0.25 * 136000).epsilon(0.05));
   REQUIRE_THROWS_WITH(presetSpec("default", 0.0), "--scale must be a positive number");
+}
+
+TEST_CASE("every number's slider spans what a hand can drag and what the built-in scenes use",
+          "[presets][params]") {
+  for (const ParamInfo& p : paramTable()) {
+    if (p.choices) continue;
+    INFO(p.key);
+    const SliderSpan s = sliderSpan(p);
+    CHECK(s.lo >= p.min);
+    CHECK(s.hi <= p.max);
+    CHECK(s.lo < s.hi);
+    // Wide spans are logarithmic, and no slider takes more than 6 decades: on a 300-pixel
+    // slider a 150-pixel drag then changes a value at most 1,000-fold (Kε's old linear
+    // [0, 10⁴] took 0.1 to 7,039).
+    if (s.lo > 0 && s.hi / s.lo >= 100) CHECK(s.log);
+    if (s.log) CHECK(s.hi / s.lo <= 1e6 * (1 + 1e-12));
+    if (!s.log) CHECK((s.lo == 0 || s.hi / s.lo < 100));
+    if (!s.log && s.lo == 0) CHECK(s.hi <= 1000 * std::max(getParam(SimParams{}, p), 1e-3));
+    // The defaults and every built-in scene's values are on the slider (or are its off value,
+    // typed with Ctrl+click, like Kε = 0).
+    std::vector<std::pair<std::string, double>> uses = {{"defaults", getParam(SimParams{}, p)}};
+    for (const BuiltinScene& b : builtinScenes())  // the stress scenes go past on purpose
+      if (!b.stress) uses.emplace_back(b.spec.name, getParam(b.spec.params, p));
+    for (const auto& [where, v] : uses) {
+      INFO(where << ": " << v);
+      CHECK(((v >= s.lo && v <= s.hi) || v == p.min));
+    }
+  }
 }
