@@ -50,11 +50,20 @@ bool sinkOutline(const View& view, const Sink& k, std::vector<ImVec2>& outline) 
   return true;
 }
 
-// One radio button a choice, on one line; returns the index chosen.
+// Stays on the line of the item before if an item `width` wide still fits there.
+void sameLineIfFits(float width) {
+  const float right = ImGui::GetItemRectMax().x + ImGui::GetStyle().ItemSpacing.x + width;
+  if (right <= ImGui::GetWindowPos().x + ImGui::GetWindowContentRegionMax().x) ImGui::SameLine();
+}
+
+// One radio button a choice, on one line as far as they fit; returns the index chosen.
 int radioRow(int value, std::initializer_list<const char*> labels) {
   int k = 0;
   for (const char* label : labels) {
-    if (k > 0) ImGui::SameLine();
+    const ImGuiStyle& style = ImGui::GetStyle();
+    if (k > 0)
+      sameLineIfFits(ImGui::GetFrameHeight() + style.ItemInnerSpacing.x +
+                     ImGui::CalcTextSize(label).x);
     ImGui::RadioButton(label, &value, k++);
   }
   return value;
@@ -104,6 +113,20 @@ class Panel {
   bool open_ = false;
 };
 
+// A greyed hint, wrapped at the panel's width.
+void hint(const char* text) {
+  ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyle().Colors[ImGuiCol_TextDisabled]);
+  ImGui::TextWrapped("%s", text);
+  ImGui::PopStyleColor();
+}
+
+// A button on the line of the one before if it fits there, else on the next: rows of buttons
+// that wrap with the panel's width instead of being cut.
+bool flowButton(const char* label, bool first = false) {
+  if (!first) sameLineIfFits(ImGui::CalcTextSize(label).x + 2 * ImGui::GetStyle().FramePadding.x);
+  return ImGui::Button(label);
+}
+
 // Widgets' width in this panel: what is left of its width after the widest of these labels,
 // which then fit beside them.
 void labelRoom(std::initializer_list<const char*> labels) {
@@ -119,8 +142,8 @@ void snapshotsSection(const Snapshot& snap, Actions& actions) {
     ImGui::SetTooltip("keeps the terrain, the water, its sediment and the sources as they are now");
   for (const SnapshotInfo& k : snap.snapshots) {
     ImGui::PushID(k.id);
-    ImGui::Text("#%d  t = %.3f s  step %ld  %zu particles", k.id, k.time, k.step, k.particles);
-    ImGui::SameLine();
+    ImGui::TextWrapped("#%d  t = %.3f s, step %ld, %zu particles", k.id, k.time, k.step,
+                       k.particles);
     if (ImGui::SmallButton("restore")) actions.restoreSnapshot(k.id);
     if (ImGui::IsItemHovered())
       ImGui::SetTooltip(
@@ -274,20 +297,16 @@ void drawMarkers(const Actions& actions, int hovered) {
 void runPanel(const Snapshot& snap, Actions& actions, PanelState& state) {
   Panel panel(state, PanelId::kRun);
   if (!panel) return;
-  if (ImGui::Button(snap.paused ? "Play" : "Pause"))
+  if (flowButton(snap.paused ? "Play" : "Pause", true))
     actions.command(snap.paused ? SimCommand(cmd::Resume{}) : SimCommand(cmd::Pause{}));
-  ImGui::SameLine();
-  if (ImGui::Button("Step")) actions.command(cmd::StepOnce{});
-  ImGui::SameLine();
-  if (ImGui::Button("Reset")) actions.command(cmd::Reset{});
-  ImGui::SameLine();
-  if (ImGui::Button("Undo")) actions.undo();
+  if (flowButton("Step")) actions.command(cmd::StepOnce{});
+  if (flowButton("Reset")) actions.command(cmd::Reset{});
+  if (flowButton("Undo")) actions.undo();
   if (ImGui::IsItemHovered())
     ImGui::SetTooltip("Ctrl+Z: %s", actions.history().nextUndo()
                                         ? actions.history().nextUndo()->what.c_str()
                                         : "nothing to undo");
-  ImGui::SameLine();
-  if (ImGui::Button("Redo")) actions.redo();
+  if (flowButton("Redo")) actions.redo();
   if (ImGui::IsItemHovered())
     ImGui::SetTooltip("Ctrl+Y: %s", actions.history().nextRedo()
                                         ? actions.history().nextRedo()->what.c_str()
@@ -326,15 +345,14 @@ void displayPanel(PanelState& state) {
       RenderSettings::Terrain(radioRow(int(settings.terrain), {"shaded", "erosion", "sediment"}));
   ImGui::Checkbox("water surface", &settings.water);
   ImGui::Checkbox("reflections", &settings.reflections);
-  ImGui::SameLine();
+  sameLineIfFits(ImGui::GetFrameHeight() + 80);
   ImGui::Checkbox("refraction", &settings.refraction);
   ImGui::Checkbox("caustics", &settings.caustics);
   ImGui::Text("particles:");
   ImGui::SameLine();
   settings.particles =
       RenderSettings::Particles(radioRow(int(settings.particles), {"off", "C", "speed"}));
-  ImGui::TextDisabled("left drag: orbit, right drag: pan,");
-  ImGui::TextDisabled("wheel: zoom");
+  hint("left drag: orbit, right drag: pan, wheel: zoom");
 }
 
 void waterPanel(const Snapshot& snap, const SceneSpec& scene, Actions& actions, PanelState& state) {
@@ -347,7 +365,7 @@ void waterPanel(const Snapshot& snap, const SceneSpec& scene, Actions& actions, 
     bool on = actions.tool == t;
     if (ImGui::Checkbox(label, &on)) actions.toggle(t, on);
   }
-  ImGui::TextDisabled("drag a source's marker to move it");
+  hint("drag a source's marker to move it");
   labelRoom({"sink size [m]", "direction", "rate [L/s]", "radius [m]", "half-size [m]"});
   ImGui::SliderFloat("brush [m]", &actions.brushRadius, spacing, 30 * spacing, "%.3g");
   if (ImGui::IsItemHovered()) ImGui::SetTooltip("the water brush's radius");
@@ -388,31 +406,24 @@ void filePanel(Actions& actions, PanelState& state) {
   labelRoom({"name"});
   ImGui::InputText("name", state.path, sizeof state.path);
   ImGui::PopItemWidth();
-  ImGui::TextDisabled("files: <name>.json, .ckpt, _height.png, .r32,");
-  ImGui::TextDisabled(".obj, _erosion.png, _shot.png");
+  hint("files: <name>.json, .ckpt, _height.png, .r32, .obj, _erosion.png, _shot.png");
   const std::string base = state.path;
   using K = cmd::Save::Kind;
-  if (ImGui::Button("save scene")) actions.command(cmd::Save{K::kScene, base + ".json"});
-  ImGui::SameLine();
-  if (ImGui::Button("open scene")) {
+  if (flowButton("save scene", true)) actions.command(cmd::Save{K::kScene, base + ".json"});
+  if (flowButton("open scene")) {
     try {
       actions.command(cmd::Load{loadSceneFile(base + ".json")});
     } catch (const std::exception& e) {
       actions.log().push_back(e.what());
     }
   }
-  if (ImGui::Button("save checkpoint")) actions.command(cmd::Save{K::kCheckpoint, base + ".ckpt"});
-  ImGui::SameLine();
-  if (ImGui::Button("resume checkpoint")) actions.command(cmd::LoadCheckpoint{base + ".ckpt"});
-  if (ImGui::Button("height PNG")) actions.command(cmd::Save{K::kHeightPng, base + "_height.png"});
-  ImGui::SameLine();
-  if (ImGui::Button("raw float")) actions.command(cmd::Save{K::kHeightRaw, base + ".r32"});
-  ImGui::SameLine();
-  if (ImGui::Button("mesh OBJ")) actions.command(cmd::Save{K::kMesh, base + ".obj"});
-  if (ImGui::Button("erosion map"))
-    actions.command(cmd::Save{K::kErosionMap, base + "_erosion.png"});
-  ImGui::SameLine();
-  if (ImGui::Button("screenshot")) {
+  if (flowButton("save checkpoint")) actions.command(cmd::Save{K::kCheckpoint, base + ".ckpt"});
+  if (flowButton("resume checkpoint")) actions.command(cmd::LoadCheckpoint{base + ".ckpt"});
+  if (flowButton("height PNG")) actions.command(cmd::Save{K::kHeightPng, base + "_height.png"});
+  if (flowButton("raw float")) actions.command(cmd::Save{K::kHeightRaw, base + ".r32"});
+  if (flowButton("mesh OBJ")) actions.command(cmd::Save{K::kMesh, base + ".obj"});
+  if (flowButton("erosion map")) actions.command(cmd::Save{K::kErosionMap, base + "_erosion.png"});
+  if (flowButton("screenshot")) {
     try {
       state.screenshot(base + "_shot.png");
       actions.log().push_back("wrote " + base + "_shot.png");

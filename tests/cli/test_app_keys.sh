@@ -3,7 +3,8 @@
 # placed by a real click, then Ctrl+Z, Ctrl+Y, Ctrl+Z, Ctrl+Shift+Z, each a quick tap (down and up
 # within one frame, which ImGui 1.86's key state alone would miss); then a real drag of the source
 # cancelled with Escape. The exit report's log must hold each of them, in order, and the source
-# must be back where it was placed.
+# must be back where it was placed. Last, the window is resized: the panels follow it, inside it,
+# overlapping nothing, cutting nothing.
 set -euo pipefail
 scour="$1"
 tmp=$(mktemp -d)
@@ -46,6 +47,9 @@ xdotool key Escape
 sleep 0.8
 xdotool mouseup 1
 sleep 0.8
+# The layout follows a resize: the exit report checks the panels as drawn in the last frame.
+xdotool windowsize --sync "$window" 1100 640
+sleep 1.5
 kill -TERM "$app"  # closes the window as its close button does
 wait "$app" || { echo "the window failed: $(cat "$tmp/out.txt")"; exit 1; }
 out=$(cat "$tmp/out.txt")
@@ -58,4 +62,6 @@ engine=$(sed -n 's/.* sources at \[([^)]*) (\([^)]*\))\].*/\1/p' <<<"$out")
 [ "$engine" = "$placed" ] || { echo "the cancelled drag left the source at ($engine), not ($placed): $out"; exit 1; }
 ! grep -q "^log: source 1 moved to" <<<"$out" || { echo "a cancelled drag was logged as a move: $out"; exit 1; }
 grep -q "^log: font: .*, with the Greek letters" <<<"$out" || { echo "no Greek glyphs: $out"; exit 1; }
+grep -q "^log: layout at 1100 x 640: 7 panels inside the window, none overlapping another or the middle, nothing cut" <<<"$out" \
+  || { echo "the layout did not follow the resize: $out"; exit 1; }
 echo "real keys: $history source at ($engine)"
