@@ -36,6 +36,12 @@ Scene loadScene(const std::string& name, double scale, long particles,
                 const std::vector<std::string>& sets);
 /// Applies `--set key=value` overrides; throws InputError naming the key for a bad one.
 void applySets(SimParams& params, const std::vector<std::string>& sets);
+/// For a command line CLI11 refused: "unknown option '--particle-every' for 'scour run'; did you
+/// mean '--particles-every'?" for the first option the command does not have ("" if none).
+std::string commandLineHint(const CLI::App& app, int argc, char** argv);
+/// For a word taken as a scene that names no scene: "did you mean the command 'scour run'?" when
+/// it is a slip of a command's name ("" if not).
+std::string commandHint(const CLI::App& app, const std::string& word);
 /// A CLI11 validator: a finite number > 0.
 extern const CLI::Validator kPositive;
 void setThreads(int threads);

@@ -42,7 +42,8 @@ int main(int argc, char** argv) {
   } catch (const CLI::CallForAllHelp& e) {
     return app.exit(e);
   } catch (const CLI::ParseError& e) {
-    std::cerr << "error: " << e.what() << "\n";
+    const std::string hint = commandLineHint(app, argc, argv);
+    std::cerr << "error: " << (hint.empty() ? std::string(e.what()) : hint) << "\n";
     return kExitInput;
   }
   try {
@@ -61,7 +62,14 @@ int main(int argc, char** argv) {
     if (!window.panelShots.empty() && window.quitAfterFrames <= 0)
       throw InputError("--panel-shots: needs --quit-after-frames (the shots are of the last frame)");
     window.terrain = int(parseTerrain(windowTerrain));
-    const Scene scene = loadScene(windowScene, windowScale, 0, {});
+    Scene scene;
+    try {
+      scene = loadScene(windowScene, windowScale, 0, {});
+    } catch (const InputError& e) {  // `scour runn`: a slip of a command, not a scene
+      const std::string hint = commandHint(app, windowScene);
+      if (hint.empty()) throw;
+      throw InputError("unknown command or scene '" + windowScene + "'; " + hint);
+    }
     if (!window.replay.empty()) {
       try {
         readReplay(window.replay);  // refused before any window opens

@@ -143,13 +143,17 @@ int runScene(const RunOptions& o) {
   auto start = std::chrono::steady_clock::now();
   auto lastReport = start;
   const bool tty = ::isatty(2);
+  // Progress from where this run starts (a resumed one: the checkpoint's step or time).
+  const long firstStep = world->steps();
+  const bool bySteps = o.steps > 0;
+  RunProgress pace(bySteps ? double(firstStep) : world->time(), bySteps ? double(o.steps) : o.time);
   auto progress = [&](bool last) {
-    const double done = o.steps > 0 ? double(world->steps()) / double(o.steps) : world->time() / o.time;
-    const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    const double eta = done > 0 ? elapsed * (1 - done) / done : 0;
-    char line[200];
-    std::snprintf(line, sizeof line, "step %ld  t = %.4g s  particles %zu  %3.0f%%  ETA %.0f s",
-                  world->steps(), world->time(), world->fluid().size(), 100 * done, eta);
+    const double done = pace.fraction(), eta = pace.etaSeconds();
+    char line[200], etaText[32] = "ETA -";
+    if (eta >= 0) std::snprintf(etaText, sizeof etaText, "ETA %.0f s", eta);
+    std::snprintf(line, sizeof line, "step %ld  t = %.4g s  particles %zu  %3.0f%%  %s",
+                  world->steps(), world->time(), world->fluid().size(), 100 * done,
+                  last ? "" : etaText);
     if (tty) {
       const int width = 30, filled = int(done * width + 0.5);
       std::cerr << "\r[" << std::string(size_t(std::clamp(filled, 0, width)), '#')
@@ -172,6 +176,8 @@ int runScene(const RunOptions& o) {
     if (frames && world->steps() % o.framesEvery == 0)
       frames->write(makeFrame(*world), (dir / RunOutputs::frameName(world->steps())).string());
     auto now = std::chrono::steady_clock::now();
+    pace.add(std::chrono::duration<double>(now - start).count(),
+             bySteps ? double(world->steps()) : world->time());
     // A terminal gets a live bar; a log gets one plain line every few seconds.
     if (now - lastReport > (tty ? std::chrono::milliseconds(200) : std::chrono::milliseconds(5000))) {
       lastReport = now;
@@ -186,7 +192,9 @@ int runScene(const RunOptions& o) {
               << "summary written to " << (dir / "summary.json").string() << "\n";
     return exitCode(end);
   }
-  std::cout << "ran " << world->steps() << " steps (" << world->time() << " s simulated, "
+  std::cout << "ran " << world->steps() - firstStep << " steps";
+  if (firstStep > 0) std::cout << " (from step " << firstStep << " to " << world->steps() << ")";
+  std::cout << " (" << world->time() << " s simulated, "
             << world->fluid().size() << " particles) in " << wall << " s; outputs in "
             << dir.string() << "\n";
   return kExitOk;
@@ -199,7 +207,7 @@ Command addRunCommand(CLI::App& app) {
   CLI::App* c = app.add_subcommand("run", "Run a scene and write its outputs");
   auto* scene = c->add_option("scene", o->scene,
                               "Built-in scene name (see `scour presets`) or a scene file (.json)");
-  c->add_flag("--headless", o->headless, "Run without a window");
+  c->add_flag("--headless", o->headless, "Ignored: run never opens a window (kept for old scripts)");
   auto* steps = c->add_option("--steps", o->steps, "Number of steps")->check(kPositive);
   auto* time = c->add_option("--time", o->time, "Simulated seconds")->check(kPositive);
   steps->excludes(time);

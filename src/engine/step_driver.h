@@ -6,8 +6,10 @@
 
 #include <array>
 #include <chrono>
+#include <deque>
 #include <exception>
 #include <string>
+#include <utility>
 
 #include "engine/world.h"
 
@@ -66,6 +68,25 @@ RunEnd runWhile(World& world, More&& more, Each&& each) {
   }
   return end;
 }
+
+/// How far a run is between its start and its end (steps, or simulated seconds) and when it will
+/// end, from the progress of the last `window` wall seconds: not the run's mean since it
+/// started, which a slow start (the first steps, the first picture, a splash settling) skews for
+/// the rest of the run.
+class RunProgress {
+ public:
+  RunProgress(double from, double to, double window = 10) : from_(from), to_(to), window_(window) {}
+  /// The progress `at` (steps or seconds) reached `wall` seconds after the run started.
+  void add(double wall, double at);
+  /// Of the way from start to end, in [0, 1].
+  double fraction() const;
+  /// Wall seconds left at the recent rate; negative while there is no rate yet.
+  double etaSeconds() const;
+
+ private:
+  double from_, to_, window_;
+  std::deque<std::pair<double, double>> samples_;  // (wall, at), the last window_ seconds
+};
 
 /// `steps` steps (or fewer, if one fails).
 template <class Each>

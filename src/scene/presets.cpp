@@ -158,9 +158,18 @@ void applyScaling(SceneSpec& s, double scale, long particles) {
 
 SceneSpec presetSpec(const std::string& name, double scale, long particles) {
   const BuiltinScene* b = findBuiltinScene(name);
-  if (!b)
-    throw std::invalid_argument("unknown scene '" + name + "' (built-in scenes: " +
+  if (!b) {
+    // A near miss gets its nearest built-in name ("canyn": canyon), a far one only the list.
+    std::string best;
+    size_t bestD = SIZE_MAX;
+    for (const BuiltinScene& k : builtinScenes())
+      if (const size_t d = editDistance(name, k.spec.name); d < bestD) bestD = d, best = k.spec.name;
+    const std::string hint = bestD <= std::max<size_t>(2, name.size() / 3)
+                                 ? "; did you mean '" + best + "'?"
+                                 : std::string();
+    throw std::invalid_argument("unknown scene '" + name + "'" + hint + " (built-in scenes: " +
                                 builtinSceneNames() + ")");
+  }
   SceneSpec s = b->spec;
   applyScaling(s, scale, particles);
   return s;

@@ -14,6 +14,13 @@ expect() {  # expect "message fragment" args...
   echo "ok: scour $* -> $(head -1 <<<"$out")"
 }
 expect "unknown scene 'nosuch'" run nosuch --headless --steps 5 --out "$tmp/a"
+# A slip gets the nearest valid name: an option of the command in use, a command, a scene.
+expect "unknown option '--particle-every' for 'scour run'; did you mean '--particles-every'?" run dambreak --particle-every 10 --steps 5 --out "$tmp/a"
+expect "unknown option '--stepz' for 'scour bench'; did you mean '--steps'?" bench block --stepz 3
+expect "unknown option '--scael' for 'scour'; did you mean '--scale'?" --scael 0.3
+expect "unknown option '--zzzzzzzz' for 'scour run' ('scour run --help' lists them)" run dambreak --zzzzzzzz --steps 5 --out "$tmp/a"
+expect "unknown command or scene 'runn'; did you mean the command 'scour run'?" runn
+expect "unknown scene 'canyn'; did you mean 'canyon'? (built-in scenes: block," run canyn --steps 5 --out "$tmp/a"
 expect "--steps" run dambreak --headless --steps -5 --out "$tmp/b"
 expect "--steps" run dambreak --headless --steps 0 --out "$tmp/c"
 expect "--time" run dambreak --headless --time nan --out "$tmp/d"

@@ -109,7 +109,9 @@ echo "scene file reproduces the preset: $h3"
 # Checkpoints: a run resumed from step 10 reaches the hash of the run that went straight to 30.
 "$scour" run default --scale 0.2 --headless --steps 30 --checkpoint-every 10 --out "$tmp/ck" >/dev/null
 [ -f "$tmp/ck/checkpoint_000010.ckpt" ] && [ -f "$tmp/ck/checkpoint_000030.ckpt" ] || { echo "checkpoints missing"; exit 1; }
-"$scour" run --resume "$tmp/ck/checkpoint_000010.ckpt" --headless --steps 30 --out "$tmp/re" >/dev/null
+said=$("$scour" run --resume "$tmp/ck/checkpoint_000010.ckpt" --headless --steps 30 --out "$tmp/re")
+# It says how many steps this run made, from where to where (not the checkpoint's total).
+grep -q "^ran 20 steps (from step 10 to 30) (" <<<"$said" || { echo "resumed run's count: $said"; exit 1; }
 hs=$(python3 -c "import json;print(json.load(open('$tmp/ck/summary.json'))['state_hash'])")
 hr=$(python3 -c "import json;print(json.load(open('$tmp/re/summary.json'))['state_hash'])")
 [ "$hs" = "$hr" ] || { echo "resumed run differs: $hr vs $hs"; exit 1; }

@@ -63,3 +63,26 @@ TEST_CASE("the step driver says which way a run stopped", "[engine][driver]") {
   CHECK(RunEnd{}.describe().empty());
   CHECK(failed.steps == 3);
 }
+
+TEST_CASE("a run's progress and ETA come from where it started and its recent rate",
+          "[engine][driver]") {
+  // A resumed run from step 500 to 1,000: 20 steps/s for the first 10 s (a slow start), then
+  // 100 steps/s. The ETA follows the recent rate, not the mean since the start.
+  RunProgress p(500, 1000, 5);
+  CHECK(p.etaSeconds() < 0);  // no rate yet
+  double wall = 0, at = 500;
+  for (int k = 0; k < 100; ++k) p.add(wall += 0.1, at += 2);
+  CHECK(p.fraction() == Approx(200.0 / 500));
+  CHECK(p.etaSeconds() == Approx(300.0 / 20));
+  for (int k = 0; k < 100; ++k) p.add(wall += 0.1, at += 10);
+  CHECK(p.fraction() == 1.0);
+  CHECK(p.etaSeconds() == Approx(0));
+  // Six seconds into the fast part of a run to 2,000: the last 5 s were all at 100 steps/s.
+  RunProgress r(500, 2000, 5);
+  wall = 0, at = 500;
+  for (int k = 0; k < 100; ++k) r.add(wall += 0.1, at += 2);
+  for (int k = 0; k < 60; ++k) r.add(wall += 0.1, at += 10);
+  CHECK(r.fraction() == Approx((1300.0 - 500) / 1500));
+  CHECK(r.etaSeconds() == Approx(700.0 / 100).epsilon(0.02));
+  // The mean since the start would have said (1,500 − 800) / (800 / 16 s) = 14 s.
+}
