@@ -650,7 +650,7 @@ json parseJsonText(const std::string& text, const std::string& file) {
     return true;
   };
   try {
-    return json::parse(text, callback);
+    return json::parse(text, callback, /*allow_exceptions=*/true, /*ignore_comments=*/true);
   } catch (const json::out_of_range& e) {
     // The lexer refuses a number beyond double range (1e999) before any value event: the path
     // is where it stood.

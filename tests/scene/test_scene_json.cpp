@@ -97,3 +97,17 @@ TEST_CASE("the reader names the field, what it expected and what it found", "[sc
         "x.json: stress.jumps[0].param: required field is missing");
   CHECK(error([](json&) {}) == "(accepted)");
 }
+
+TEST_CASE("scene files may hold // and /* */ comments", "[scene][json]") {
+  const std::string text = R"(// a comment before the object
+{
+  "version": 1, /* inside */ "name": "commented",
+  "terrain": {"kind": "slope", "slope": 0.2}  // after a value
+})";
+  const SceneSpec s = specFromJson(parseJsonText(text, "commented.json"), "commented.json");
+  CHECK(s.name == "commented");
+  CHECK(s.terrain.slope == 0.2);
+  // A comment left open is still an error that names the file.
+  REQUIRE_THROWS_WITH(parseJsonText("{\"version\": 1 /* open", "bad.json"),
+                      Catch::StartsWith("bad.json: not valid JSON"));
+}
