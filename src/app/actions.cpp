@@ -1,6 +1,7 @@
 #include "app/actions.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <variant>
 
@@ -59,14 +60,26 @@ void Actions::placeSink(const Eigen::Vector3f& hit) {
                  formatNumber(sinkRadius) + " m");
 }
 
-// A disk of 3 Δs, 6 Δs over the terrain, pouring down at about 1 m/s.
+// Like the scene's own sources (the median rate and radius of those it has now: a click on the
+// default scene gave 20 L/s, ten times its 2 L/s), else a disk of 3 Δs pouring 0.3 m/s; 6 Δs over
+// the terrain, pouring down.
 void Actions::placeSource(const Eigen::Vector3f& hit) {
   const Frame& frame = snapshot().frame;
+  const std::vector<Source>& scene = snapshot().sources;
   Source s;
   s.radius = 3 * frame.spacing;
+  s.rate = M_PI * s.radius * s.radius * 0.3;
+  if (!scene.empty()) {
+    auto median = [&](double Source::*field) {
+      std::vector<double> v;
+      for (const Source& k : scene) v.push_back(k.*field);
+      std::nth_element(v.begin(), v.begin() + long(v.size() / 2), v.end());
+      return v[v.size() / 2];
+    };
+    s.rate = median(&Source::rate), s.radius = median(&Source::radius);
+  }
   s.center = overTerrain(frame, hit.cast<double>(), s.radius, 6 * frame.spacing);
   s.direction = {0, -1, 0};
-  s.rate = 50 * std::pow(double(frame.spacing), 2);
   perform(
       {{cmd::AddSource{s}}, {cmd::RemoveSource{snapshot().sources.size()}}, "place a source", ""},
       false);

@@ -52,7 +52,9 @@ TEST_CASE("a click with the source tool places a source over the terrain, undone
   CHECK(actions.tool == Tool::kOrbit);
   actions.click(400, 300);
   const Source s = posted.last<cmd::AddSource>().source;
+  // A scene without sources: a disk of 3 Δs pouring at 0.3 m/s.
   CHECK(s.radius == Approx(3 * 0.02));
+  CHECK(s.rate == Approx(M_PI * 0.06 * 0.06 * 0.3));
   CHECK(s.center.y() == Approx(0.2 + 6 * 0.02));  // 6 Δs over the terrain
   CHECK(s.direction == Eigen::Vector3d(0, -1, 0));
   CHECK(actions.lastSource() == s.center);
@@ -66,6 +68,23 @@ TEST_CASE("a click with the source tool places a source over the terrain, undone
   actions.click(400, 0);
   CHECK(posted.commands.size() == before);
   CHECK(actions.log().back() == "no terrain under the mouse");
+}
+
+TEST_CASE("a click-placed source is like the scene's own: their median rate and radius",
+          "[app][actions]") {
+  Snapshot snap = flatSnapshot();
+  for (double rate : {0.002, 0.001, 0.004}) {
+    Source k;
+    k.center = {0.5, 0.6, 0.5}, k.radius = rate * 25, k.rate = rate, k.direction = {0, -1, 0};
+    snap.sources.push_back(k);
+  }
+  Posted posted;
+  Actions actions(posted.post(), snap.frame.spacing);
+  actions.setView(viewOf(snap));
+  actions.click(400, 300);
+  const Source s = posted.last<cmd::AddSource>().source;
+  CHECK(s.rate == 0.002);  // the default scene's 2 L/s, not 20
+  CHECK(s.radius == Approx(0.05));
 }
 
 TEST_CASE("a drag of a source's marker is one edit; Escape takes it back for good",
