@@ -80,6 +80,12 @@ class Actions {
   /// Back to a kept state. It brings back its own sources and sinks: edits made before it would
   /// undo onto the wrong ones, so the history starts afresh.
   void restoreSnapshot(int id);
+  /// The world went back to another state (an automatic rollback): the edits in the history may
+  /// name sources that are not there, so it starts afresh; `why` goes to the log.
+  void forgetHistory(const std::string& why) {
+    history_.clear();
+    log_.push_back(why);
+  }
   /// A command that is not an edit (play, pause, step, reset, take a snapshot, save, load).
   void command(const SimCommand& c) { post_(c); }
 

@@ -184,17 +184,23 @@ class Mouse {
   double lastX_ = 0, lastY_ = 0;
 };
 
-// The worker's errors and notices go to the log once each.
+// The worker's errors and notices go to the log once each; after an automatic rollback the undo
+// history starts afresh.
 class WorkerMessages {
  public:
-  void read(const Snapshot& snap, std::vector<std::string>& log) {
+  void read(const Snapshot& snap, Actions& actions) {
+    std::vector<std::string>& log = actions.log();
     if (!snap.error.empty() && snap.error != error_) log.push_back(snap.error);
     if (!snap.notice.empty() && snap.notice != notice_) log.push_back(snap.notice);
     error_ = snap.error, notice_ = snap.notice;
+    if (snap.rollbacks != rollbacks_)
+      actions.forgetHistory("rolled back after a broken invariant: the undo history starts afresh");
+    rollbacks_ = snap.rollbacks;
   }
 
  private:
   std::string error_, notice_;
+  long rollbacks_ = 0;
 };
 
 // The view the actions pick through this frame; sizes the renderer to the framebuffer.
@@ -294,7 +300,7 @@ int runApp(const SceneSpec& spec, const AppOptions& o) {
     glfwPollEvents();
     worker.poll();
     const Snapshot& snap = worker.latest();
-    messages.read(snap, actions.log());
+    messages.read(snap, actions);
     plots.addSteps(snap);
     layOutPanels(window, state);
     if (!orbit) orbit = fitOrbit(snap.frame, window, state.layout.free);

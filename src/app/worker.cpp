@@ -7,11 +7,36 @@
 #include "scene/scene_json.h"
 
 #include <algorithm>
+#include <iterator>
 #include <chrono>
 #include <optional>
 #include <sstream>
 
 namespace scour {
+
+namespace {
+
+// A command as the log names it when an invariant breaks after it.
+std::string describe(const SimCommand& c) {
+  static const char* const names[] = {
+      "a parameter", "a source placed", "a source edited", "a source deleted", "a sink placed",
+      "a sink resized", "a sink deleted", "water painted", "pause", "play", "a single step",
+      "reset", "a scene opened", "steps per frame", "effects", "a file saved",
+      "a checkpoint resumed", "a snapshot taken", "a snapshot restored", "a snapshot deleted"};
+  static_assert(std::size(names) == std::variant_size_v<SimCommand>);
+  return names[c.index()];
+}
+
+// Whether a command changes the scene (not play, pause, a step, a file written, a snapshot kept).
+bool isEdit(const SimCommand& c) {
+  return !std::holds_alternative<cmd::Pause>(c) && !std::holds_alternative<cmd::Resume>(c) &&
+         !std::holds_alternative<cmd::StepOnce>(c) &&
+         !std::holds_alternative<cmd::SetStepsPerFrame>(c) && !std::holds_alternative<cmd::Save>(c) &&
+         !std::holds_alternative<cmd::TakeSnapshot>(c) &&
+         !std::holds_alternative<cmd::DeleteSnapshot>(c);
+}
+
+}  // namespace
 
 SimulationWorker::SimulationWorker(SceneSpec spec, bool paused) : spec_(std::move(spec)), paused_(paused) {
   rebuild();
@@ -50,6 +75,8 @@ void SimulationWorker::rebuild() {
   world_ = std::make_unique<World>(buildScene(spec).desc);
   worldEffects_ = spec.effects;
   ++generation_;
+  ring_.clear();
+  keepRingState();
 }
 
 void SimulationWorker::adopt(std::unique_ptr<World> next, const SceneSpec& spec) {
@@ -96,9 +123,12 @@ void SimulationWorker::run() {
     applyAll(commands);
     if (!paused_ || stepsToDo_ > 0) {
       const auto t0 = Clock::now();
-      const RunEnd end = runSteps(*world_, stepsPerFrame_);
+      const RunEnd end = runSteps(*world_, stepsPerFrame_, [&](const StepRecord&) {
+        if (world_->steps() > brokeAt_) rollbacksInARow_ = 0;  // got past the step that broke
+        if (world_->steps() % kRingEvery == 0) keepRingState();
+      });
       const long done = end.steps;
-      if (!end.ok()) {
+      if (!end.ok() && !(end.status == RunEnd::Status::kInvariantViolated && rollBack(end))) {
         error_ = end.describe() + " (paused; reset to go on)";
         paused_ = true;
       }
@@ -138,6 +168,7 @@ void SimulationWorker::applyAll(std::deque<SimCommand>& commands) {
       }
       pending = p;
       edits.emplace_back(s->key, s->value);
+      noteEdit(s->key + " = " + s->value);
       continue;
     }
     flush();
@@ -151,6 +182,7 @@ void SimulationWorker::apply(SimCommand& c) {
   // that fails leaves both as they were and says why in the next snapshot.
   try {
     // (Parameter edits never come here: applyAll batches them.)
+    if (isEdit(c)) noteEdit(describe(c));
     if (auto* a = std::get_if<cmd::AddSource>(&c)) {
       world_->addSource(a->source);
       std::lock_guard<std::mutex> lock(mutex_);
@@ -246,10 +278,7 @@ void SimulationWorker::resume(const std::string& path) {
   kept_.clear();  // a checkpoint may be of another scene
 }
 
-void SimulationWorker::takeSnapshot() {
-  if (kept_.size() >= kMaxSnapshots)
-    throw std::invalid_argument("at most " + std::to_string(kMaxSnapshots) +
-                                " snapshots: delete one first");
+SimulationWorker::Kept SimulationWorker::keep() const {
   Kept k;
   k.spec = spec();
   k.spec.effects = worldEffects_;
@@ -258,7 +287,61 @@ void SimulationWorker::takeSnapshot() {
   std::ostringstream out;
   world_->saveState(out);
   k.state = out.str();
-  k.info = {nextSnapshotId_++, world_->time(), world_->steps(), world_->fluid().size()};
+  k.info = {0, world_->time(), world_->steps(), world_->fluid().size()};
+  return k;
+}
+
+void SimulationWorker::keepRingState() {
+  if (!ring_.empty() && ring_.back().info.step == world_->steps()) return;
+  ring_.push_back(keep());
+  while (ring_.size() > kRingSize) ring_.pop_front();
+}
+
+bool SimulationWorker::rollBack(const RunEnd& end) {
+  const long broke = world_->steps() + 1;  // the step that threw was not counted
+  if (ring_.empty() || rollbacksInARow_ >= kMaxRollbacks) return false;
+  // A second break before getting past the first: the newest state may already hold the trouble
+  // (a particle on its way through), so go one further back each time, as far as the ring goes.
+  const size_t back = std::min(size_t(rollbacksInARow_), ring_.size() - 1);
+  const Kept& k = ring_[ring_.size() - 1 - back];
+  SimParams p = world_->params();
+  p.cfl = std::max(0.5 * p.cfl, 0.01);
+  p.force_cfl = std::max(0.5 * p.force_cfl, 0.01);
+  if (p.fixed_dt > 0) p.fixed_dt *= 0.5;
+  SceneSpec spec = k.spec;
+  spec.params = p;
+  try {
+    auto next = std::make_unique<World>(buildScene(spec).desc);
+    std::istringstream in(k.state);
+    next->loadState(in);
+    adopt(std::move(next), spec);
+  } catch (const std::exception&) {
+    return false;  // the running World is as it was: pause
+  }
+  // The newer ring states are of the timeline just left.
+  while (ring_.size() > 1 && ring_.back().info.step > k.info.step) ring_.pop_back();
+  ++rollbacksInARow_, ++rollbacks_;
+  brokeAt_ = std::max(brokeAt_, broke);
+  std::ostringstream msg;
+  msg << end.describe() << "; the edit before it: " << lastEdit_ << ". Rolled back to step "
+      << k.info.step << " (t = " << k.info.time << " s) with a smaller time step (time.cfl "
+      << p.cfl << ", time.force_cfl " << p.force_cfl;
+  if (p.fixed_dt > 0) msg << ", time.fixed_dt " << p.fixed_dt;
+  msg << "); running on";
+  error_ = msg.str();
+  return true;
+}
+
+void SimulationWorker::noteEdit(const std::string& what) {
+  lastEdit_ = what + " at step " + std::to_string(world_->steps());
+}
+
+void SimulationWorker::takeSnapshot() {
+  if (kept_.size() >= kMaxSnapshots)
+    throw std::invalid_argument("at most " + std::to_string(kMaxSnapshots) +
+                                " snapshots: delete one first");
+  Kept k = keep();
+  k.info.id = nextSnapshotId_++;
   notice_ = "took snapshot " + std::to_string(k.info.id) +
             " at t = " + std::to_string(k.info.time) + " s";
   kept_.push_back(std::move(k));
@@ -289,6 +372,7 @@ void SimulationWorker::publish(double stepsPerSecond) {
   s.emitted = world_->emitted();
   s.painted = world_->painted();
   s.removedBySinks = world_->removedBySinks();
+  s.rollbacks = rollbacks_;
   s.snapshots.clear();
   for (const Kept& k : kept_) s.snapshots.push_back(k.info);
   frames_.publish();

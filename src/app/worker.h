@@ -9,6 +9,12 @@
 // into it, so the terrain, the water, the suspended sediment and what the sinks removed come back
 // together and the soil budget stays closed. A restore that fails leaves the running World as it
 // was. The UI sees only their list (id, time, step) in each Snapshot.
+//
+// A sandbox must not lose the user's work: the worker also keeps a ring of automatic states (one
+// every kRingEvery steps, the last kRingSize). When a step breaks an invariant, it goes back to
+// the newest of them with a smaller time step (λ and λ_f halved, a fixed Δt too), says which
+// check broke and which edit came last before it, and runs on. Only after kMaxRollbacks of them
+// in a row without getting past the step that broke does it pause.
 #include <condition_variable>
 #include <deque>
 #include <memory>
@@ -20,6 +26,7 @@
 
 #include "app/triple_buffer.h"
 #include "engine/frame.h"
+#include "engine/step_driver.h"
 #include "engine/world.h"
 #include "scene/presets.h"
 
@@ -87,6 +94,7 @@ struct Snapshot {
   long emitted = 0, painted = 0;  ///< particles made by sources, by the brush
   long removedBySinks = 0;        ///< particles the sinks took out since the start
   std::vector<SnapshotInfo> snapshots;  ///< kept states, oldest first
+  long rollbacks = 0;  ///< automatic rollbacks after a broken invariant, since the start
 };
 
 class SimulationWorker {
@@ -118,6 +126,13 @@ class SimulationWorker {
   void resume(const std::string& checkpoint);
   void takeSnapshot();
   void deleteSnapshot(int id);
+  /// The ring's state now (after a rebuild, and every kRingEvery steps).
+  void keepRingState();
+  /// After a step broke an invariant: back to the newest ring state with a smaller time step.
+  /// False (and nothing changed) if it cannot, or has tried kMaxRollbacks times already.
+  bool rollBack(const RunEnd& end);
+  /// Remembers the newest edit (the log names it when an invariant breaks).
+  void noteEdit(const std::string& what);
 
   /// A kept world state and the scene it belongs to (the scene's effects are those the World
   /// was built with, its sources and sinks those of the World when taken).
@@ -126,8 +141,13 @@ class SimulationWorker {
     SceneSpec spec;
     std::string state;
   };
+  /// The world state now, with the scene it belongs to.
+  Kept keep() const;
   /// At most this many are kept (a state is a few MB at the default scales).
   static constexpr size_t kMaxSnapshots = 32;
+  static constexpr size_t kRingSize = 4;
+  static constexpr long kRingEvery = 500;
+  static constexpr int kMaxRollbacks = 6;
 
   mutable std::mutex mutex_;  // guards queue_, stop_ and spec_
   std::condition_variable wake_;
@@ -143,6 +163,11 @@ class SimulationWorker {
   std::string error_, notice_;
   Effects worldEffects_;  ///< what world_ was built with (SetEffects waits for a reset)
   std::vector<Kept> kept_;
+  std::deque<Kept> ring_;      ///< automatic states, oldest first
+  int rollbacksInARow_ = 0;    ///< since the last step past the one that broke
+  long brokeAt_ = -1;          ///< the step that broke last
+  long rollbacks_ = 0;
+  std::string lastEdit_ = "none";
   int nextSnapshotId_ = 1;
   TripleBuffer<Snapshot> frames_;
   std::thread thread_;

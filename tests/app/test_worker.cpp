@@ -203,6 +203,29 @@ TEST_CASE("a snapshot brings the terrain back exactly", "[app][worker]") {
   CHECK(w.latest().generation == kept.generation + 1);
 }
 
+TEST_CASE("a broken invariant rolls back to a recent state with a smaller step and runs on",
+          "[app][worker][rollback]") {
+  SimulationWorker w(small(), /*paused=*/true);
+  REQUIRE(waitFor(w, [](const Snapshot& s) { return s.paused; }));
+  // Four times the stable step: the water blows up within a few dozen steps.
+  w.post(cmd::SetParam{"time.fixed_dt", "0.004"});
+  w.post(cmd::Resume{});
+  REQUIRE(waitFor(w, [](const Snapshot& s) { return s.rollbacks >= 1; }));
+  const std::string said = w.latest().error;
+  INFO(said);
+  CHECK(said.rfind("invariant violated at step ", 0) == 0);
+  CHECK(said.find("; the edit before it: time.fixed_dt = 0.004 at step 0. Rolled back to step 0 "
+                  "(t = 0 s) with a smaller time step (time.cfl 0.2, time.force_cfl 0.125, "
+                  "time.fixed_dt 0.002); running on") != std::string::npos);
+  // It goes on by itself, never paused, at the halved step, and keeps every invariant.
+  REQUIRE(waitFor(w, [](const Snapshot& s) { return s.frame.step >= 300; }));
+  const Snapshot& s = w.latest();
+  CHECK_FALSE(s.paused);
+  CHECK(s.params.fixed_dt == 0.002);
+  CHECK(s.rollbacks == 1);
+  CHECK(s.soil.relativeError() < 1e-6);
+}
+
 TEST_CASE("parameter edits arriving during steps are safe", "[app][worker][tsan]") {
   SimulationWorker w(small());
   // This thread edits while the worker steps and reads every frame it gets.

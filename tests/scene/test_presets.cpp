@@ -122,7 +122,7 @@ TEST_CASE("every built-in scene is its file in assets/scenes/, read by the scene
   CHECK(presets == presetList().size());
   CHECK(presets == 11);
   CHECK(stress == stressSceneNames().size());
-  CHECK(stress == 20);
+  CHECK(stress == 21);
   REQUIRE_THROWS_WITH(presetSpec("nosuch"), Catch::StartsWith("unknown scene 'nosuch' (built-in scenes: block, canyon,") &&
                                                 Catch::Contains("stress-cliffs"));
 }
