@@ -344,6 +344,10 @@ void displayPanel(PanelState& state) {
   settings.terrain =
       RenderSettings::Terrain(radioRow(int(settings.terrain), {"shaded", "erosion", "sediment"}));
   ImGui::Checkbox("water surface", &settings.water);
+  sameLineIfFits(ImGui::GetFrameHeight() + 50);
+  ImGui::Checkbox("spray", &settings.spray);
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("water the surface does not cover (a jet in flight, drops) as sprites");
   ImGui::Checkbox("reflections", &settings.reflections);
   sameLineIfFits(ImGui::GetFrameHeight() + 80);
   ImGui::Checkbox("refraction", &settings.refraction);

@@ -102,7 +102,8 @@ Renderer::Renderer(int width, int height)
       lightTerrain_(Program::graphics("terrain_vs", "light_terrain_fs")),
       lightWater_(Program::graphics("water_vs", "light_water_fs")),
       photon_(Program::graphics("photon_vs", "photon_fs")),
-      particles_(Program::graphics("particles_vs", "particles_fs")) {
+      particles_(Program::graphics("particles_vs", "particles_fs")),
+      spray_(Program::graphics("spray_vs", "spray_fs")) {
   glCreateVertexArrays(1, &emptyVao_);
   // The water VAO reads the surface's vertex buffer: vec4 position, vec4 normal.
   glCreateVertexArrays(1, &waterVao_);
@@ -356,6 +357,8 @@ void Renderer::render(const Frame& f, const Camera& c, const RenderSettings& s) 
     glBindTextureUnit(2, backDepth_);
     water_.use();
     drawWater();
+    if (s.spray && s.particles == RenderSettings::Particles::kOff)
+      drawSpray(f, c, clipFromWorld, float(s.surface.iso));
   }
   if (s.particles != RenderSettings::Particles::kOff && f.particles() > 0) {
     const bool bySpeed = s.particles == RenderSettings::Particles::kSpeed;
@@ -385,6 +388,28 @@ void Renderer::render(const Frame& f, const Camera& c, const RenderSettings& s) 
     glDrawArrays(GL_POINTS, 0, GLsizei(f.particles()));
   }
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
+}
+
+void Renderer::drawSpray(const Frame& f, const Camera& c, const Eigen::Matrix4f& clipFromWorld,
+                         float iso) {
+  const DensityGrid& g = surface_.grid();
+  if (g.nodes.minCoeff() < 2) return;
+  const GLuint sp = spray_.id();
+  setMatrix(spray_, "clipFromWorld", clipFromWorld);
+  const float pixels =
+      float(height_) * f.spacing / (2 * std::tan(0.5f * c.fov_deg * float(M_PI) / 180));
+  glProgramUniform1f(sp, spray_.location("pointSize"), pixels);
+  glProgramUniform3f(sp, spray_.location("origin"), g.origin.x(), g.origin.y(), g.origin.z());
+  glProgramUniform1f(sp, spray_.location("cell"), g.cell);
+  glProgramUniform3i(sp, spray_.location("nodes"), g.nodes.x(), g.nodes.y(), g.nodes.z());
+  glProgramUniform1f(sp, spray_.location("isoFixed"), float(iso * g.scale));
+  glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);  // the splat's atomics, read here
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, surface_.densityBuffer());
+  glVertexArrayVertexBuffer(particleVao_, 0, surface_.particleBuffer(), 0, 16);
+  glEnable(GL_PROGRAM_POINT_SIZE);
+  spray_.use();
+  glBindVertexArray(particleVao_);
+  glDrawArrays(GL_POINTS, 0, GLsizei(f.particles()));
 }
 
 std::vector<unsigned char> Renderer::readPixels() const {

@@ -34,6 +34,9 @@ struct RenderSettings {
   bool refraction = true;   ///< the terrain seen through the water
   bool caustics = true;     ///< light focused by the surface on the terrain under it
   Particles particles = Particles::kOff;
+  /// With the surface on and the particles off: the water the surface does not cover (a jet in
+  /// flight, drops) as sprites.
+  bool spray = true;
   float change_scale = 0;   ///< |Δh| for full false colour [m]; 0: the frame's largest
   float refraction_strength = 0.05f;
   float caustic_strength = 0.7f;
@@ -76,7 +79,10 @@ class Renderer {
 
   int width_, height_;
   WaterSurface surface_;
-  Program terrain_, water_, lightTerrain_, lightWater_, photon_, particles_;
+  /// The spray pass: the surface's particles outside it, as sprites.
+  void drawSpray(const Frame& f, const Camera& c, const Eigen::Matrix4f& clipFromWorld,
+                 float iso);
+  Program terrain_, water_, lightTerrain_, lightWater_, photon_, particles_, spray_;
   GLuint emptyVao_ = 0, waterVao_ = 0, particleVao_ = 0, particleBuffer_ = 0;
   size_t particleCap_ = 0;
   GLuint heights_ = 0, change_ = 0;

@@ -29,6 +29,8 @@ SCOUR_SHADER(photon_vs)
 SCOUR_SHADER(photon_fs)
 SCOUR_SHADER(particles_vs)
 SCOUR_SHADER(particles_fs)
+SCOUR_SHADER(spray_vs)
+SCOUR_SHADER(spray_fs)
 
 namespace scour {
 
@@ -48,6 +50,8 @@ const char* shaderSource(const std::string& name) {
       {"photon_fs", scour_shader_photon_fs},
       {"particles_vs", scour_shader_particles_vs},
       {"particles_fs", scour_shader_particles_fs},
+      {"spray_vs", scour_shader_spray_vs},
+      {"spray_fs", scour_shader_spray_fs},
   };
   for (const auto& [n, src] : table)
     if (name == n) return src;

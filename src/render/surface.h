@@ -75,6 +75,8 @@ class WaterSurface {
   const DensityGrid& grid() const { return grid_; }  ///< geometry of the last update
   GLuint vertexBuffer() const { return vertices_; }  ///< vec4 position, vec4 normal per vertex
   GLuint drawBuffer() const { return draw_; }        ///< DrawArraysIndirectCommand
+  GLuint particleBuffer() const { return particles_; }  ///< vec4 per particle of the last update
+  GLuint densityBuffer() const { return density_; }     ///< the grid's values, fixed point
   /// Wall-clock seconds of each step of the last update, with `profile` on (else 0).
   struct Timings {
     double splat = 0, occupancy = 0, march = 0;

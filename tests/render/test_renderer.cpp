@@ -131,3 +131,55 @@ TEST_CASE("EGL and OSMesa draw the same picture", "[render][picture]") {
   INFO("pixels differing by more than 2 levels: " << off);
   CHECK(off <= kW * kH / 200);  // at most 0.5 %
 }
+
+TEST_CASE("spray: water the surface does not cover is drawn as sprites", "[render][picture]") {
+  auto gl = createGlContext(GlBackend::kEgl);
+  Frame f = pool();
+  // Drops in flight over the dry side, 10 cm apart: each alone, its density a fifth of the iso
+  // level, so no surface is drawn around it.
+  for (float x : {0.65f, 0.75f, 0.85f})
+    for (float z : {0.3f, 0.5f, 0.7f}) {
+      f.position.emplace_back(x, 0.3f, z);
+      f.concentration.push_back(0.0f);
+      f.speed.push_back(1.0f);
+    }
+  RenderSettings s;
+  s.terrain = RenderSettings::Terrain::kShaded;
+  const auto with = picture(*gl, f, s);
+  s.spray = false;
+  const auto without = picture(*gl, f, s);
+  // Over the dry side only the drops differ, and each drop shows.
+  long changed = 0;
+  int drops = 0;
+  for (float x : {0.65f, 0.75f, 0.85f}) {
+    bool seen = false;
+    for (int y = 0; y < kH; ++y)
+      for (int dx = -3; dx <= 3; ++dx) {
+        // 0.3 m up, nearer the camera: where the floor's 0.5 + (x − 0.5)·1.6/1.3 would be.
+        const int c = std::clamp(column(0.5f + (x - 0.5f) * 1.6f / 1.3f) + dx, 0, kW - 1);
+        const unsigned char* p = &with[size_t(4 * (y * kW + c))];
+        const unsigned char* q = &without[size_t(4 * (y * kW + c))];
+        seen |= p[0] != q[0] || p[1] != q[1] || p[2] != q[2];
+      }
+    drops += seen;
+  }
+  for (int y = 0; y < kH; ++y)
+    for (int x = column(0.6f); x < kW; ++x) {
+      const unsigned char* p = &with[size_t(4 * (y * kW + x))];
+      const unsigned char* q = &without[size_t(4 * (y * kW + x))];
+      changed += p[0] != q[0] || p[1] != q[1] || p[2] != q[2];
+    }
+  CHECK(drops == 3);
+  CHECK(changed > 9);
+  // Without the drops the dry side is the same with spray on or off: nothing is made up.
+  const Frame plain = pool();
+  s.spray = true;
+  const auto a = picture(*gl, plain, s);
+  s.spray = false;
+  const auto b = picture(*gl, plain, s);
+  long dryDiff = 0;
+  for (int y = 0; y < kH; ++y)
+    for (int x = column(0.6f); x < kW; ++x)
+      for (int k = 0; k < 3; ++k) dryDiff += a[size_t(4 * (y * kW + x) + k)] != b[size_t(4 * (y * kW + x) + k)];
+  CHECK(dryDiff == 0);
+}
