@@ -283,6 +283,7 @@ int runApp(const SceneSpec& spec, const AppOptions& o) {
   actions.log().push_back(imgui->fontNote);
   PanelState state;
   state.settings.terrain = RenderSettings::Terrain(o.terrain);
+  state.budget.choose(o.quality);
   state.screenshot = [&](const std::string& path) { renderer.writePng(path); };
   ReplayPlayer replay(std::move(events), state.screenshot);
   Mouse mouse;
@@ -298,7 +299,7 @@ int runApp(const SceneSpec& spec, const AppOptions& o) {
   std::signal(SIGTERM, request);
   while (!glfwWindowShouldClose(window) && !closeRequested) {
     glfwPollEvents();
-    worker.poll();
+    const bool fresh = worker.poll();
     const Snapshot& snap = worker.latest();
     messages.read(snap, actions);
     plots.addSteps(snap);
@@ -310,9 +311,12 @@ int runApp(const SceneSpec& spec, const AppOptions& o) {
     const int hovered = mouse.read(window, actions, *orbit, replay.holdsMouse());
 
     const double t0 = glfwGetTime();
-    renderer.render(snap.frame, orbit->camera(), state.settings);
+    RenderSettings drawn = state.budget.apply(state.settings);
+    drawn.same_frame = !fresh && frames > 0;
+    renderer.render(snap.frame, orbit->camera(), drawn);
     glFinish();
     plots.addRender(glfwGetTime() - t0);
+    state.budget.measured(glfwGetTime() - t0);
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
     glViewport(0, 0, renderer.width(), renderer.height());
     renderer.blitTo(renderer.width(), renderer.height());
@@ -331,13 +335,15 @@ int runApp(const SceneSpec& spec, const AppOptions& o) {
     int w = 0, h = 0;
     glfwGetWindowSize(window, &w, &h);
     actions.log().push_back(checkLayout(state.layout, state.drawn, state.cut, float(w), float(h)));
+    actions.log().push_back("water quality " + state.budget.describe());
   }
   const long errors = context->errors();
   imgui.reset();
   worker.poll();
   const Snapshot& last = worker.latest();
   if (o.stats)
-    *o.stats = {frames, last.frame.step - std::max(firstStep, 0L), glfwGetTime() - opened};
+    *o.stats = {frames, last.frame.step - std::max(firstStep, 0L), glfwGetTime() - opened,
+                state.budget.describe()};
   std::cout << exitReport(last, frames, actions, errors);
   return errors == 0 ? 0 : 1;
 }

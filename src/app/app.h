@@ -19,10 +19,12 @@ struct AppOptions {
   /// With quitAfterFrames: the last frame as seen, panels included, as DIR/window.png, and each
   /// panel as DIR/panel_<title>.png
   std::string panelShots;
+  int quality = -1;  ///< the water's quality level (RenderBudget), -1 automatic
   double quitAfterSeconds = 0;  ///< > 0: close after this long (bench --with-window)
   struct Stats {
     long frames = 0, steps = 0;  ///< drawn; simulated while the window was open
     double seconds = 0;
+    std::string quality;  ///< the water's quality at the end (RenderBudget::describe)
   };
   Stats* stats = nullptr;    ///< filled on closing when set
 };

@@ -356,6 +356,18 @@ void displayPanel(PanelState& state) {
   ImGui::SameLine();
   settings.particles =
       RenderSettings::Particles(radioRow(int(settings.particles), {"off", "C", "speed"}));
+  // The water's quality: automatic (as the frame budget allows) or pinned to a level.
+  std::vector<const char*> names = {"auto"};
+  for (const RenderBudget::Level& l : RenderBudget::levels()) names.push_back(l.name);
+  int pick = state.budget.choice() + 1;
+  labelRoom({"quality"});
+  if (ImGui::Combo("quality", &pick, names.data(), int(names.size())))
+    state.budget.choose(pick - 1);
+  ImGui::PopItemWidth();
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("auto keeps a frame under 40 ms: a coarser surface grid, fewer effects, "
+                      "last the particles alone");
+  hint(state.budget.describe().c_str());
   hint("left drag: orbit, right drag: pan, wheel: zoom");
 }
 

@@ -10,6 +10,7 @@
 
 #include "app/actions.h"
 #include "app/layout.h"
+#include "app/render_budget.h"
 #include "render/renderer.h"
 
 namespace scour {
@@ -29,6 +30,9 @@ struct TimePlots {
 /// What the panels keep between frames besides the scene.
 struct PanelState {
   RenderSettings settings;
+  /// What the picture can afford each frame (the surface's grid, effects); the Display panel
+  /// shows its choice and lets the user pin one.
+  RenderBudget budget;
   /// Where the panels go this frame (from the window's size and `wishes`), what each asked for
   /// in the last one, where each was drawn and whether something in it was cut.
   Layout layout;

@@ -280,16 +280,16 @@ int benchWindow(const BenchOptions& o, const Scene& scene) {
   const double windowed = double(st.steps) / st.seconds;
   json j = {{"scene", o.scene}, {"particles", scene.desc.particles.size()}, {"seconds", o.seconds},
             {"threads", omp_get_max_threads()}, {"steps_per_second_no_window", alone},
-            {"steps_per_second_with_window", windowed}, {"window_frames_per_second", double(st.frames) / st.seconds},
+            {"steps_per_second_with_window", windowed}, {"window_frames_per_second", double(st.frames) / st.seconds}, {"water_quality", st.quality},
             {"ratio", windowed / std::max(alone, 1e-12)}};
   if (o.json) {
     std::cout << j.dump(2) << "\n";
     return kExitOk;
   }
   std::printf("engine steps per second, %s (%zu particles), %.0f s each: no window %.1f, window open %.1f "
-              "(%.0f%%; the window drew %.1f frames/s)\n",
+              "(%.0f%%; the window drew %.1f frames/s, water quality %s)\n",
               o.scene.c_str(), scene.desc.particles.size(), o.seconds, alone, windowed, 100 * windowed / alone,
-              double(st.frames) / st.seconds);
+              double(st.frames) / st.seconds, st.quality.c_str());
   return kExitOk;
 }
 

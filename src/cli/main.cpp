@@ -5,6 +5,7 @@
 #include <tuple>
 
 #include "app/app.h"
+#include "app/render_budget.h"
 #include "cli/commands.h"
 #include "cli/render_options.h"
 #include "scene/builtin_scenes.h"
@@ -27,6 +28,8 @@ int main(int argc, char** argv) {
   app.add_option("--panel-shots", window.panelShots, "With --quit-after-frames: the last frame with its panels as DIR/window.png and each panel as DIR/panel_<name>.png");
   app.add_flag("--paused", window.paused, "Start paused");
   app.add_option("--replay", window.replay, "Play scripted input events from a file (docs/app.md)");
+  std::string windowQuality = "auto";
+  app.add_option("--quality", windowQuality, "The water's quality: auto (as the frame budget allows; default), fine, grid1, grid1.5, grid2.25, grid3, particles");
   std::string windowTerrain = "erosion";
   app.add_option("--terrain", windowTerrain, "Terrain colours at the start: erosion (default), shaded, sediment");
   Command run = addRunCommand(app);
@@ -62,6 +65,11 @@ int main(int argc, char** argv) {
     if (!window.panelShots.empty() && window.quitAfterFrames <= 0)
       throw InputError("--panel-shots: needs --quit-after-frames (the shots are of the last frame)");
     window.terrain = int(parseTerrain(windowTerrain));
+    try {
+      window.quality = RenderBudget::parse(windowQuality);
+    } catch (const std::invalid_argument& e) {
+      throw InputError(std::string("--quality: ") + e.what());
+    }
     Scene scene;
     try {
       scene = loadScene(windowScene, windowScale, 0, {});

@@ -288,11 +288,15 @@ void Renderer::lightPass(const Frame& f, const RenderSettings& s, const Eigen::M
 }
 
 void Renderer::render(const Frame& f, const Camera& c, const RenderSettings& s) {
-  uploadTerrain(f);
+  if (!s.same_frame) uploadTerrain(f);
   const bool water = s.water && f.particles() > 0;
-  if (water) {
+  const bool built = s.same_frame && surfaceBuilt_ && builtParticles_ == f.particles() &&
+                     builtWith_.cell_over_spacing == s.surface.cell_over_spacing &&
+                     builtWith_.iso == s.surface.iso && builtWith_.occupancy == s.surface.occupancy;
+  if (water && !built) {
     surface_.setSettings(s.surface);
     surface_.update(f);
+    surfaceBuilt_ = true, builtWith_ = s.surface, builtParticles_ = f.particles();
   }
   // The scene's extent, for the clip planes and the sun's view.
   const Eigen::Vector3f lo(float(f.x0), heightMin_, float(f.z0));

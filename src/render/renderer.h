@@ -37,6 +37,9 @@ struct RenderSettings {
   /// With the surface on and the particles off: the water the surface does not cover (a jet in
   /// flight, drops) as sprites.
   bool spray = true;
+  /// The frame is the one drawn last (the window between two steps): its terrain and, if the
+  /// surface's settings are unchanged, its surface are kept, not built again.
+  bool same_frame = false;
   float change_scale = 0;   ///< |Δh| for full false colour [m]; 0: the frame's largest
   float refraction_strength = 0.05f;
   float caustic_strength = 0.7f;
@@ -83,6 +86,9 @@ class Renderer {
   void drawSpray(const Frame& f, const Camera& c, const Eigen::Matrix4f& clipFromWorld,
                  float iso);
   Program terrain_, water_, lightTerrain_, lightWater_, photon_, particles_, spray_;
+  bool surfaceBuilt_ = false;  ///< for the settings and the particle count below
+  SurfaceSettings builtWith_;
+  size_t builtParticles_ = 0;
   GLuint emptyVao_ = 0, waterVao_ = 0, particleVao_ = 0, particleBuffer_ = 0;
   size_t particleCap_ = 0;
   GLuint heights_ = 0, change_ = 0;

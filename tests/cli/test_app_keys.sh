@@ -64,4 +64,5 @@ engine=$(sed -n 's/.* sources at \[([^)]*) (\([^)]*\))\].*/\1/p' <<<"$out")
 grep -q "^log: font: .*, with the Greek letters" <<<"$out" || { echo "no Greek glyphs: $out"; exit 1; }
 grep -q "^log: layout at 1100 x 640: 7 panels inside the window, none overlapping another or the middle, nothing cut" <<<"$out" \
   || { echo "the layout did not follow the resize: $out"; exit 1; }
+grep -q "^log: water quality auto: " <<<"$out" || { echo "no water quality: $out"; exit 1; }
 echo "real keys: $history source at ($engine)"
