@@ -1,7 +1,8 @@
 // Spray: the particles the water surface does not cover (a jet in flight, drops, a thin sheet
 // below the grid's resolution), drawn as sprites. Each reads the density grid the surface was
-// extracted from, trilinearly at its position: at or above the iso level it lies inside the
-// surface, which already shows it, and it is not drawn (moved out of the clip volume).
+// extracted from, trilinearly at its position: at or above half the iso level it lies inside the
+// surface or just beside it (on a coarse grid the water's rim reads a little below the level),
+// which already shows it, and it is not drawn (moved out of the clip volume).
 layout(location = 0) in vec4 position;  // xyz; the surface's particle buffer
 layout(std430, binding = 1) readonly buffer Density { uint density[]; };
 uniform mat4 clipFromWorld;
@@ -25,7 +26,7 @@ void main() {
       v += w.x * w.y * w.z * float(density[(n.z * nodes.y + n.y) * nodes.x + n.x]);
     }
   }
-  if (inGrid && v >= isoFixed) {
+  if (inGrid && v >= 0.5 * isoFixed) {
     gl_Position = vec4(2.0, 2.0, 2.0, 1.0);  // inside the surface: clipped away
     gl_PointSize = 1.0;
     shade = 0.0;
@@ -33,5 +34,5 @@ void main() {
   }
   gl_Position = clipFromWorld * vec4(position.xyz, 1.0);
   gl_PointSize = max(pointSize / gl_Position.w, 2.0);
-  shade = clamp(v / max(isoFixed, 1.0), 0.0, 1.0);  // the thinner, the paler
+  shade = clamp(2.0 * v / max(isoFixed, 1.0), 0.0, 1.0);  // the thinner, the paler
 }
