@@ -122,7 +122,8 @@ void Actions::dragTo(double x, double y) {
 void Actions::release() {
   if (drag_.index >= 0 && drag_.moved) {
     lastSource_ = drag_.last, lastRadius_ = drag_.start.radius;
-    log_.push_back("source " + std::to_string(drag_.index) + " moved to " + formatPoint(drag_.last));
+    log_.push_back("source " + std::to_string(drag_.index) + " moved to " +
+                   formatPoint(drag_.last));
   }
   drag_ = SourceDrag{};
 }
@@ -147,8 +148,10 @@ void Actions::setParameter(const std::string& key, const std::string& value, boo
     const double current = getParam(snapshot().params, *info);
     old = info->choices ? info->choices[int(current)] : formatNumber(current);
   }
-  perform({{cmd::SetParam{key, value}}, {cmd::SetParam{key, old}},
-           key + " = " + value + " (was " + old + ")", key},
+  perform({{cmd::SetParam{key, value}},
+           {cmd::SetParam{key, old}},
+           key + " = " + value + " (was " + old + ")",
+           key},
           extend);
 }
 

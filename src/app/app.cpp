@@ -13,8 +13,8 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cctype>
-#include <csignal>
 #include <cmath>
+#include <csignal>
 #include <fstream>
 #include <iostream>
 #include <optional>
@@ -92,7 +92,8 @@ struct ImGuiSession {
 
 // Key presses in the order GLFW reports them. ImGui 1.86 keeps only whether a key is down at each
 // frame, so a tap that goes down and up between two slow frames (one a second on llvmpipe) would
-// be lost; a queue loses none. Made before ImGui's backend, which calls this callback after its own.
+// be lost; a queue loses none. Made before ImGui's backend, which calls this callback after its
+// own.
 class Keys {
  public:
   struct Press {
@@ -101,7 +102,8 @@ class Keys {
   explicit Keys(GLFWwindow* window) {
     glfwSetWindowUserPointer(window, this);
     glfwSetKeyCallback(window, [](GLFWwindow* w, int key, int, int action, int mods) {
-      if (action == GLFW_PRESS) static_cast<Keys*>(glfwGetWindowUserPointer(w))->presses_.push_back({key, mods});
+      if (action == GLFW_PRESS)
+        static_cast<Keys*>(glfwGetWindowUserPointer(w))->presses_.push_back({key, mods});
     });
   }
   /// The presses since the last call.
@@ -240,9 +242,11 @@ void writePanelShots(GLFWwindow* window, const PanelState& state, const std::str
   for (size_t i = 0; i < state.drawn.size(); ++i) {
     const Rect& r = state.drawn[i];
     const int x = std::clamp(int(r.x * sx), 0, fbw - 1), y = std::clamp(int(r.y * sy), 0, fbh - 1);
-    const int pw = std::clamp(int(r.w * sx), 1, fbw - x), ph = std::clamp(int(r.h * sy), 1, fbh - y);
+    const int pw = std::clamp(int(r.w * sx), 1, fbw - x),
+              ph = std::clamp(int(r.h * sy), 1, fbh - y);
     std::string name = panelTitle(PanelId(i));
-    std::transform(name.begin(), name.end(), name.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+    std::transform(name.begin(), name.end(), name.begin(),
+                   [](unsigned char c) { return char(std::tolower(c)); });
     writeRgbaPng(dir + "/panel_" + name + ".png", pw, ph, readWindowPixels(x, y, pw, ph, fbh));
   }
 }

@@ -96,7 +96,8 @@ Layout layOut(float w, float h, const Wishes& wishes, const LayoutStyle& s) {
   return out;
 }
 
-std::string checkLayout(const Layout& planned, const std::array<Rect, size_t(PanelId::kCount)>& drawn,
+std::string checkLayout(const Layout& planned,
+                        const std::array<Rect, size_t(PanelId::kCount)>& drawn,
                         const std::array<bool, size_t(PanelId::kCount)>& cut, float w, float h) {
   std::string problems;
   auto note = [&](const std::string& p) { problems += (problems.empty() ? "" : "; ") + p; };

@@ -86,9 +86,9 @@ class Panel {
     ImGui::SetNextWindowPos({r.x, r.y}, ImGuiCond_Always);
     ImGui::SetNextWindowSize({r.w, r.h}, ImGuiCond_Always);
     if (startCollapsed) ImGui::SetNextWindowCollapsed(true, ImGuiCond_Once);
-    open_ = ImGui::Begin(panelTitle(id), nullptr,
-                         ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize |
-                             ImGuiWindowFlags_NoSavedSettings);
+    open_ = ImGui::Begin(
+        panelTitle(id), nullptr,
+        ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoSavedSettings);
   }
   ~Panel() {
     PanelWish& wish = state_.wishes[size_t(id_)];
@@ -365,8 +365,9 @@ void displayPanel(PanelState& state) {
     state.budget.choose(pick - 1);
   ImGui::PopItemWidth();
   if (ImGui::IsItemHovered())
-    ImGui::SetTooltip("auto keeps a frame under 40 ms: a coarser surface grid, fewer effects, "
-                      "last the particles alone");
+    ImGui::SetTooltip(
+        "auto keeps a frame under 40 ms: a coarser surface grid, fewer effects, "
+        "last the particles alone");
   hint(state.budget.describe().c_str());
   hint("left drag: orbit, right drag: pan, wheel: zoom");
 }

@@ -19,7 +19,7 @@ class RenderBudget {
  public:
   /// A quality level: its name, its surface grid (cell / Δs) and what it draws.
   struct Level {
-    const char* key;   ///< on the command line (--quality)
+    const char* key;  ///< on the command line (--quality)
     const char* name;
     double cellOverSpacing;  ///< 0: no surface, the particles alone
     bool caustics, refraction;

@@ -47,7 +47,8 @@ std::string commandLineHint(const CLI::App& app, int argc, char** argv) {
     if (word[1] != '-' && word.size() == 2) continue;  // a short flag or a negative number
     const std::string near = nearestName(word, known);
     return "unknown option '" + word + "' for '" + name + "'" +
-           (near.empty() ? " ('" + name + " --help' lists them)" : "; did you mean '" + near + "'?");
+           (near.empty() ? " ('" + name + " --help' lists them)"
+                         : "; did you mean '" + near + "'?");
   }
   return "";
 }

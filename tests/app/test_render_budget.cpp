@@ -1,9 +1,9 @@
 // The window's render budget without a window: frames over the budget take the quality down
 // (far over it, several levels at once), frames with room bring it back up without see-sawing,
 // and a level the user pins stays whatever the frame times.
-#include "app/render_budget.h"
-
 #include <catch2/catch.hpp>
+
+#include "app/render_budget.h"
 
 using namespace scour;
 
