@@ -5,15 +5,16 @@
 namespace scour {
 
 std::string exitReport(const Snapshot& last, long frames, const Actions& actions, long glErrors) {
-  // Near the last placed or moved source, and close around its disk (there only what it emits,
-  // not water flowing past below).
+  // Near the last placed or moved source, and around its disk within 3 Δs (there only what it
+  // emits: it stands 6 Δs over the terrain; a layer it emits takes longer than the next to leave),
+  // not water flowing past below.
   long near = 0, atDisk = 0;
   const Eigen::Vector3d& source = actions.lastSource();
   if (source.allFinite())
     for (const auto& x : last.frame.position) {
       const double d = (x.cast<double>() - source).norm();
       near += d < 0.25;
-      atDisk += d < actions.lastRadius() + last.frame.spacing;
+      atDisk += d < actions.lastRadius() + 3 * last.frame.spacing;
     }
   std::ostringstream where;
   for (const Source& s : last.sources)
