@@ -1,7 +1,6 @@
 // "Did you mean" for the command line, as the scene reader has for keys: a misspelled option
 // gets the nearest one its command has, a misspelled command the nearest command.
 #include <algorithm>
-#include <climits>
 #include <string>
 
 #include "cli/commands.h"
@@ -10,15 +9,6 @@
 namespace scour {
 
 namespace {
-
-// The nearest of `names` to `word`, if near enough to be a slip ("" if not).
-std::string nearestName(const std::string& word, const std::vector<std::string>& names) {
-  std::string best;
-  size_t bestD = SIZE_MAX;
-  for (const std::string& n : names)
-    if (const size_t d = editDistance(word, n); d < bestD) bestD = d, best = n;
-  return bestD <= std::max<size_t>(2, word.size() / 3) ? best : "";
-}
 
 std::vector<std::string> optionNames(const CLI::App& cmd) {
   std::vector<std::string> names = {"--help"};
@@ -45,7 +35,7 @@ std::string commandLineHint(const CLI::App& app, int argc, char** argv) {
     word = word.substr(0, word.find('='));
     if (std::find(known.begin(), known.end(), word) != known.end()) continue;
     if (word[1] != '-' && word.size() == 2) continue;  // a short flag or a negative number
-    const std::string near = nearestName(word, known);
+    const std::string near = nearestName(word, known, slipDistance(word));
     return "unknown option '" + word + "' for '" + name + "'" +
            (near.empty() ? " ('" + name + " --help' lists them)"
                          : "; did you mean '" + near + "'?");
@@ -57,7 +47,7 @@ std::string commandHint(const CLI::App& app, const std::string& word) {
   std::vector<std::string> names;
   for (const CLI::App* sub : app.get_subcommands([](const CLI::App*) { return true; }))
     names.push_back(sub->get_name());
-  const std::string near = nearestName(word, names);
+  const std::string near = nearestName(word, names, slipDistance(word));
   return near.empty() ? "" : "did you mean the command 'scour " + near + "'?";
 }
 

@@ -198,6 +198,15 @@ SliderSpan sliderSpan(const ParamInfo& i) {
   return {lo, hi, lo > 0 && hi / lo >= 100};
 }
 
+std::string nearestName(std::string_view word, const std::vector<std::string>& names,
+                        size_t maxDistance) {
+  std::string best;
+  size_t bestD = SIZE_MAX;
+  for (const std::string& n : names)
+    if (const size_t d = editDistance(word, n); d < bestD) bestD = d, best = n;
+  return bestD <= maxDistance ? best : "";
+}
+
 const std::vector<ParamInfo>& paramTable() {
   static const std::vector<ParamInfo> table = makeTable();
   return table;

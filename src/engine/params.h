@@ -4,6 +4,8 @@
 // paper's symbol; the scene reader, the CLI --set overrides and (later) the GUI are all built from
 // it, so no code lists the fields one by one.
 
+#include <algorithm>
+#include <cstdint>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -151,6 +153,11 @@ SliderSpan sliderSpan(const ParamInfo& i);
 const ParamInfo* findParam(std::string_view key);
 /// Levenshtein distance, for "did you mean" suggestions.
 size_t editDistance(std::string_view a, std::string_view b);
+/// The name of `names` nearest `word` by edit distance, or "" if none is within `maxDistance`.
+std::string nearestName(std::string_view word, const std::vector<std::string>& names,
+                        size_t maxDistance = SIZE_MAX);
+/// How far a word may be from a name and still be a slip of it: 2 edits, or a third of its length.
+inline size_t slipDistance(std::string_view word) { return std::max<size_t>(2, word.size() / 3); }
 /// The valid key closest to `key` by edit distance (for "did you mean" messages).
 std::string nearestParamKey(std::string_view key);
 /// Sets a parameter from text. Returns an empty string on success, else a message naming the key.

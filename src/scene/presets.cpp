@@ -160,13 +160,10 @@ SceneSpec presetSpec(const std::string& name, double scale, long particles) {
   const BuiltinScene* b = findBuiltinScene(name);
   if (!b) {
     // A near miss gets its nearest built-in name ("canyn": canyon), a far one only the list.
-    std::string best;
-    size_t bestD = SIZE_MAX;
-    for (const BuiltinScene& k : builtinScenes())
-      if (const size_t d = editDistance(name, k.spec.name); d < bestD) bestD = d, best = k.spec.name;
-    const std::string hint = bestD <= std::max<size_t>(2, name.size() / 3)
-                                 ? "; did you mean '" + best + "'?"
-                                 : std::string();
+    std::vector<std::string> names;
+    for (const BuiltinScene& k : builtinScenes()) names.push_back(k.spec.name);
+    const std::string best = nearestName(name, names, slipDistance(name));
+    const std::string hint = best.empty() ? std::string() : "; did you mean '" + best + "'?";
     throw std::invalid_argument("unknown scene '" + name + "'" + hint + " (built-in scenes: " +
                                 builtinSceneNames() + ")");
   }

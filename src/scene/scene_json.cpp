@@ -28,14 +28,6 @@ const std::vector<std::pair<std::string, bool Effects::*>>& effectTable() {
   return t;
 }
 
-std::string nearest(const std::string& key, const std::vector<std::string>& valid) {
-  std::string best;
-  size_t bestD = SIZE_MAX;
-  for (const auto& v : valid)
-    if (size_t d = editDistance(key, v); d < bestD) bestD = d, best = v;
-  return best;
-}
-
 std::string shown(const json& v) { return excerpt(v.dump()); }
 
 // One JSON object being read: typed getters that say where and what, and a check that every key
@@ -140,7 +132,7 @@ class Fields {
       std::string names;
       for (const auto& k : known_)
         if (names.find("'" + k + "'") == std::string::npos) names += (names.empty() ? "'" : ", '") + k + "'";
-      const std::string hint = key.size() <= 64 ? "did you mean '" + nearest(key, known_) + "'?"
+      const std::string hint = key.size() <= 64 ? "did you mean '" + nearestName(key, known_) + "'?"
                                                 : "valid keys here: " + names;
       throw SceneError(file_ + ": " + excerpt(at(key)) + ": unknown key (" + hint + ")");
     }
@@ -503,7 +495,7 @@ SceneSpec specFromJson(const json& j, const std::string& file) {
         if (n == name) s.effects.*member = true, found = true;
       if (!found)
         throw SceneError(file + ": " + at + ": unknown effect '" + name + "' (did you mean '" +
-                         nearest(name, names) + "'?)");
+                         nearestName(name, names) + "'?)");
     }
   }
   if (top.has("water")) {
