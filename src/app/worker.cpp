@@ -16,24 +16,31 @@ namespace scour {
 
 namespace {
 
-// A command as the log names it when an invariant breaks after it.
-std::string describe(const SimCommand& c) {
-  static const char* const names[] = {
-      "a parameter", "a source placed", "a source edited", "a source deleted", "a sink placed",
-      "a sink resized", "a sink deleted", "water painted", "pause", "play", "a single step",
-      "reset", "a scene opened", "steps per frame", "effects", "a file saved",
-      "a checkpoint resumed", "a snapshot taken", "a snapshot restored", "a snapshot deleted"};
+// A command that changes the scene, as the log names it when an invariant breaks after it;
+// nullptr for one that does not (play, pause, a step, a file written, a snapshot kept).
+const char* editName(const SimCommand& c) {
+  static const char* const names[] = {"a parameter",
+                                      "a source placed",
+                                      "a source edited",
+                                      "a source deleted",
+                                      "a sink placed",
+                                      "a sink resized",
+                                      "a sink deleted",
+                                      "water painted",
+                                      nullptr,  // pause
+                                      nullptr,  // play
+                                      nullptr,  // a single step
+                                      "reset",
+                                      "a scene opened",
+                                      nullptr,  // steps per frame
+                                      "effects",
+                                      nullptr,  // a file saved
+                                      "a checkpoint resumed",
+                                      nullptr,  // a snapshot taken
+                                      "a snapshot restored",
+                                      nullptr};  // a snapshot deleted
   static_assert(std::size(names) == std::variant_size_v<SimCommand>);
   return names[c.index()];
-}
-
-// Whether a command changes the scene (not play, pause, a step, a file written, a snapshot kept).
-bool isEdit(const SimCommand& c) {
-  return !std::holds_alternative<cmd::Pause>(c) && !std::holds_alternative<cmd::Resume>(c) &&
-         !std::holds_alternative<cmd::StepOnce>(c) &&
-         !std::holds_alternative<cmd::SetStepsPerFrame>(c) && !std::holds_alternative<cmd::Save>(c) &&
-         !std::holds_alternative<cmd::TakeSnapshot>(c) &&
-         !std::holds_alternative<cmd::DeleteSnapshot>(c);
 }
 
 }  // namespace
@@ -182,7 +189,7 @@ void SimulationWorker::apply(SimCommand& c) {
   // that fails leaves both as they were and says why in the next snapshot.
   try {
     // (Parameter edits never come here: applyAll batches them.)
-    if (isEdit(c)) noteEdit(describe(c));
+    if (const char* what = editName(c)) noteEdit(what);
     if (auto* a = std::get_if<cmd::AddSource>(&c)) {
       world_->addSource(a->source);
       std::lock_guard<std::mutex> lock(mutex_);
