@@ -91,8 +91,11 @@ Layout layOut(float w, float h, const Wishes& wishes, const LayoutStyle& s) {
     right.push_back(PanelId::kLog);
     out.free = {middleX, top, std::max(middle, 0.0f), bottom - top};
   }
-  stack(out, left, wishes, m, column, top, bottom, s);
-  stack(out, right, wishes, w - m - column, column, top, bottom, s);
+  // The log is as tall as the style says, whatever its lines ask for.
+  Wishes fixed = wishes;
+  fixed[size_t(PanelId::kLog)].height = s.logHeight;
+  stack(out, left, fixed, m, column, top, bottom, s);
+  stack(out, right, fixed, w - m - column, column, top, bottom, s);
   return out;
 }
 

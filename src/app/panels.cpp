@@ -56,17 +56,26 @@ void sameLineIfFits(float width) {
   if (right <= ImGui::GetWindowPos().x + ImGui::GetWindowContentRegionMax().x) ImGui::SameLine();
 }
 
+// The width of a checkbox or radio button with this label: its box, a gap, the label.
+float toggleWidth(const char* label) {
+  return ImGui::GetFrameHeight() + ImGui::GetStyle().ItemInnerSpacing.x +
+         ImGui::CalcTextSize(label).x;
+}
+
 // One radio button a choice, on one line as far as they fit; returns the index chosen.
 int radioRow(int value, std::initializer_list<const char*> labels) {
   int k = 0;
   for (const char* label : labels) {
-    const ImGuiStyle& style = ImGui::GetStyle();
-    if (k > 0)
-      sameLineIfFits(ImGui::GetFrameHeight() + style.ItemInnerSpacing.x +
-                     ImGui::CalcTextSize(label).x);
+    if (k > 0) sameLineIfFits(toggleWidth(label));
     ImGui::RadioButton(label, &value, k++);
   }
   return value;
+}
+
+// A checkbox on the line of the item before if it fits there, else on the next.
+bool flowCheckbox(const char* label, bool* value) {
+  sameLineIfFits(toggleWidth(label));
+  return ImGui::Checkbox(label, value);
 }
 
 void plot(const char* name, const std::deque<float>& q) {
@@ -81,11 +90,10 @@ void plot(const char* name, const std::deque<float>& q) {
 // whether anything in it was wider than it (a cut label) are kept for the next frame.
 class Panel {
  public:
-  Panel(PanelState& state, PanelId id, bool startCollapsed = false) : state_(state), id_(id) {
+  Panel(PanelState& state, PanelId id) : state_(state), id_(id) {
     const Rect& r = state.layout[id];
     ImGui::SetNextWindowPos({r.x, r.y}, ImGuiCond_Always);
     ImGui::SetNextWindowSize({r.w, r.h}, ImGuiCond_Always);
-    if (startCollapsed) ImGui::SetNextWindowCollapsed(true, ImGuiCond_Once);
     open_ = ImGui::Begin(
         panelTitle(id), nullptr,
         ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoSavedSettings);
@@ -344,13 +352,11 @@ void displayPanel(PanelState& state) {
   settings.terrain =
       RenderSettings::Terrain(radioRow(int(settings.terrain), {"shaded", "erosion", "sediment"}));
   ImGui::Checkbox("water surface", &settings.water);
-  sameLineIfFits(ImGui::GetFrameHeight() + 50);
-  ImGui::Checkbox("spray", &settings.spray);
+  flowCheckbox("spray", &settings.spray);
   if (ImGui::IsItemHovered())
     ImGui::SetTooltip("water the surface does not cover (a jet in flight, drops) as sprites");
   ImGui::Checkbox("reflections", &settings.reflections);
-  sameLineIfFits(ImGui::GetFrameHeight() + 80);
-  ImGui::Checkbox("refraction", &settings.refraction);
+  flowCheckbox("refraction", &settings.refraction);
   ImGui::Checkbox("caustics", &settings.caustics);
   ImGui::Text("particles:");
   ImGui::SameLine();
@@ -451,15 +457,12 @@ void filePanel(Actions& actions, PanelState& state) {
 }
 
 void logPanel(const std::vector<std::string>& log, PanelState& state) {
-  {
-    Panel panel(state, PanelId::kLog);
-    if (panel) {
-      for (const std::string& line : log) ImGui::TextWrapped("%s", line.c_str());
-      if (log.size() != state.logLines) ImGui::SetScrollHereY(1.0f);  // the newest in sight
-    }
+  Panel panel(state, PanelId::kLog);
+  if (panel) {
+    for (const std::string& line : log) ImGui::TextWrapped("%s", line.c_str());
+    if (log.size() != state.logLines) ImGui::SetScrollHereY(1.0f);  // the newest in sight
   }
   state.logLines = log.size();
-  state.wishes[size_t(PanelId::kLog)].height = LayoutStyle{}.logHeight;
 }
 
 }  // namespace scour
