@@ -13,6 +13,22 @@ namespace scour {
 
 namespace {
 
+// GL's rows run bottom-up; pictures are written top row first.
+std::vector<unsigned char> topRowFirst(const std::vector<unsigned char>& rgba, int width,
+                                       int height) {
+  std::vector<unsigned char> rows(rgba.size());
+  const size_t row = size_t(width) * 4;
+  for (int r = 0; r < height; ++r)
+    std::copy_n(rgba.begin() + long(size_t(height - 1 - r) * row), row,
+                rows.begin() + long(size_t(r) * row));
+  return rows;
+}
+
+// A sprite's size in pixels at distance 1: one particle spacing across.
+float spritePixels(const Frame& f, const Camera& c, int height) {
+  return float(height) * f.spacing / (2 * std::tan(0.5f * c.fov_deg * float(M_PI) / 180));
+}
+
 Eigen::Matrix4f lookAt(const Eigen::Vector3f& eye, const Eigen::Vector3f& target, const Eigen::Vector3f& up) {
   const Eigen::Vector3f f = (target - eye).normalized();
   const Eigen::Vector3f s = f.cross(up).normalized();
@@ -383,8 +399,7 @@ void Renderer::render(const Frame& f, const Camera& c, const RenderSettings& s) 
     glNamedBufferSubData(particleBuffer_, 0, GLsizeiptr(packed.size() * sizeof(float)), packed.data());
     glVertexArrayVertexBuffer(particleVao_, 0, particleBuffer_, 0, 16);
     setMatrix(particles_, "clipFromWorld", clipFromWorld);
-    const float pixels = float(height_) * f.spacing / (2 * std::tan(0.5f * c.fov_deg * float(M_PI) / 180));
-    glProgramUniform1f(particles_.id(), particles_.location("pointSize"), pixels);
+    glProgramUniform1f(particles_.id(), particles_.location("pointSize"), spritePixels(f, c, height_));
     glProgramUniform2f(particles_.id(), particles_.location("valueRange"), 0.0f, top);
     glEnable(GL_PROGRAM_POINT_SIZE);
     particles_.use();
@@ -400,9 +415,7 @@ void Renderer::drawSpray(const Frame& f, const Camera& c, const Eigen::Matrix4f&
   if (g.nodes.minCoeff() < 2) return;
   const GLuint sp = spray_.id();
   setMatrix(spray_, "clipFromWorld", clipFromWorld);
-  const float pixels =
-      float(height_) * f.spacing / (2 * std::tan(0.5f * c.fov_deg * float(M_PI) / 180));
-  glProgramUniform1f(sp, spray_.location("pointSize"), pixels);
+  glProgramUniform1f(sp, spray_.location("pointSize"), spritePixels(f, c, height_));
   glProgramUniform3f(sp, spray_.location("origin"), g.origin.x(), g.origin.y(), g.origin.z());
   glProgramUniform1f(sp, spray_.location("cell"), g.cell);
   glProgramUniform3i(sp, spray_.location("nodes"), g.nodes.x(), g.nodes.y(), g.nodes.z());
@@ -417,12 +430,9 @@ void Renderer::drawSpray(const Frame& f, const Camera& c, const Eigen::Matrix4f&
 }
 
 std::vector<unsigned char> Renderer::readPixels() const {
-  std::vector<unsigned char> rgba(size_t(width_) * height_ * 4), flipped(rgba.size());
+  std::vector<unsigned char> rgba(size_t(width_) * height_ * 4);
   glGetTextureImage(finalColour_, 0, GL_RGBA, GL_UNSIGNED_BYTE, GLsizei(rgba.size()), rgba.data());
-  const size_t row = size_t(width_) * 4;
-  for (int y = 0; y < height_; ++y)
-    std::copy_n(rgba.begin() + long(size_t(height_ - 1 - y) * row), row, flipped.begin() + long(size_t(y) * row));
-  return flipped;
+  return topRowFirst(rgba, width_, height_);
 }
 
 void Renderer::writePng(const std::string& path) const {
@@ -444,15 +454,12 @@ void writeRgbaPng(const std::string& path, int width, int height,
 }
 
 std::vector<unsigned char> readWindowPixels(int x, int y, int width, int height, int framebufferHeight) {
-  std::vector<unsigned char> rgba(size_t(width) * size_t(height) * 4), rows(rgba.size());
+  std::vector<unsigned char> rgba(size_t(width) * size_t(height) * 4);
   glBindFramebuffer(GL_READ_FRAMEBUFFER, 0);
   glReadBuffer(GL_BACK);
   glPixelStorei(GL_PACK_ALIGNMENT, 1);
   glReadPixels(x, framebufferHeight - y - height, width, height, GL_RGBA, GL_UNSIGNED_BYTE, rgba.data());
-  const size_t row = size_t(width) * 4;
-  for (int r = 0; r < height; ++r)
-    std::copy_n(rgba.begin() + long(size_t(height - 1 - r) * row), row, rows.begin() + long(size_t(r) * row));
-  return rows;
+  return topRowFirst(rgba, width, height);
 }
 
 void Renderer::blitTo(int width, int height) const {
