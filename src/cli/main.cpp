@@ -1,6 +1,7 @@
 // scour: the one binary. No subcommand: the window; subcommands: run, bench, render, stress,
 // study, presets.
 #include <cstdio>
+#include <filesystem>
 #include <iostream>
 #include <tuple>
 
@@ -62,8 +63,15 @@ int main(int argc, char** argv) {
     // The window.
     std::tie(window.width, window.height) = parseSize(windowSize, 64);
     if (!window.screenshot.empty()) requirePng("--screenshot", window.screenshot);
-    if (!window.panelShots.empty() && window.quitAfterFrames <= 0)
-      throw InputError("--panel-shots: needs --quit-after-frames (the shots are of the last frame)");
+    if (!window.panelShots.empty()) {
+      if (window.quitAfterFrames <= 0)
+        throw InputError("--panel-shots: needs --quit-after-frames (the shots are of the last frame)");
+      std::error_code ec;
+      std::filesystem::create_directories(window.panelShots, ec);
+      if (ec || !std::filesystem::is_directory(window.panelShots))
+        throw InputError("--panel-shots: cannot create directory '" + window.panelShots + "'" +
+                         (ec ? ": " + ec.message() : ""));
+    }
     window.terrain = int(parseTerrain(windowTerrain));
     try {
       window.quality = RenderBudget::parse(windowQuality);

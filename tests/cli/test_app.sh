@@ -23,6 +23,16 @@ set -e
 [ $rc -eq 2 ] && grep -qF -- "--size: expected WxH" <<<"$msg" && [ ! -e "$tmp/never.png" ] \
   || { echo "bad --size: $rc $msg"; exit 1; }
 set +e
+msg=$("$scour" --quit-after-frames 2 --panel-shots /proc/nope/shots 2>&1); rc=$?
+set -e
+[ $rc -eq 2 ] && grep -qF -- "--panel-shots: cannot create directory '/proc/nope/shots'" <<<"$msg" \
+  || { echo "bad --panel-shots: $rc $msg"; exit 1; }
+set +e
+msg=$("$scour" --panel-shots "$tmp/shots" 2>&1); rc=$?
+set -e
+[ $rc -eq 2 ] && grep -qF -- "--panel-shots: needs --quit-after-frames" <<<"$msg" \
+  || { echo "--panel-shots without --quit-after-frames: $rc $msg"; exit 1; }
+set +e
 msg=$("$scour" --quality best 2>&1); rc=$?
 set -e
 [ $rc -eq 2 ] && grep -qF -- "--quality: expected one of auto, fine, grid1, grid1.5, grid2.25, grid3, particles, found 'best'" <<<"$msg" \
