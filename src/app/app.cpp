@@ -116,8 +116,8 @@ class Keys {
 // Ctrl+Z undoes; Ctrl+Y and Ctrl+Shift+Z redo; Escape cancels a source's drag. Not while a text
 // field has the keyboard (it keeps its own Ctrl+Z).
 void applyShortcuts(const std::vector<Keys::Press>& presses, Actions& actions) {
+  if (ImGui::GetIO().WantCaptureKeyboard) return;
   for (const Keys::Press& p : presses) {
-    if (ImGui::GetIO().WantCaptureKeyboard) return;
     const bool ctrl = p.mods & GLFW_MOD_CONTROL, shift = p.mods & GLFW_MOD_SHIFT;
     if (ctrl && p.key == GLFW_KEY_Z)
       shift ? actions.redo() : actions.undo();
@@ -205,14 +205,22 @@ class WorkerMessages {
   long rollbacks_ = 0;
 };
 
+// The window's size in the mouse's (and ImGui's) pixels and its framebuffer's, read once a frame.
+struct WindowSize {
+  int w = 0, h = 0, fbw = 0, fbh = 0;
+  explicit WindowSize(GLFWwindow* window) {
+    glfwGetWindowSize(window, &w, &h);
+    glfwGetFramebufferSize(window, &fbw, &fbh);
+    w = std::max(w, 1), h = std::max(h, 1);
+    fbw = std::max(fbw, 16), fbh = std::max(fbh, 16);
+  }
+  float aspect() const { return float(fbw) / float(fbh); }
+};
+
 // The view the actions pick through this frame; sizes the renderer to the framebuffer.
-View viewOf(GLFWwindow* window, const Snapshot& snap, const Orbit& orbit, Renderer& renderer) {
-  int fbw = 0, fbh = 0, ww = 0, wh = 0;
-  glfwGetFramebufferSize(window, &fbw, &fbh);
-  fbw = std::max(fbw, 16), fbh = std::max(fbh, 16);
-  renderer.resize(fbw, fbh);
-  glfwGetWindowSize(window, &ww, &wh);
-  return {&snap, orbit.camera(), float(fbw) / float(fbh), std::max(ww, 1), std::max(wh, 1)};
+View viewOf(const WindowSize& size, const Snapshot& snap, const Orbit& orbit, Renderer& renderer) {
+  renderer.resize(size.fbw, size.fbh);
+  return {&snap, orbit.camera(), size.aspect(), size.w, size.h};
 }
 
 void drawPanels(const Snapshot& snap, const SceneSpec& scene, Actions& actions, int hovered,
@@ -233,12 +241,10 @@ void drawPanels(const Snapshot& snap, const SceneSpec& scene, Actions& actions, 
 }
 
 // The window as the user sees it, and each panel cut out of it (for docs/app.md).
-void writePanelShots(GLFWwindow* window, const PanelState& state, const std::string& dir) {
-  int w = 0, h = 0, fbw = 0, fbh = 0;
-  glfwGetWindowSize(window, &w, &h);
-  glfwGetFramebufferSize(window, &fbw, &fbh);
+void writePanelShots(const WindowSize& size, const PanelState& state, const std::string& dir) {
+  const int fbw = size.fbw, fbh = size.fbh;
   writeRgbaPng(dir + "/window.png", fbw, fbh, readWindowPixels(0, 0, fbw, fbh, fbh));
-  const float sx = float(fbw) / float(std::max(w, 1)), sy = float(fbh) / float(std::max(h, 1));
+  const float sx = float(fbw) / float(size.w), sy = float(fbh) / float(size.h);
   for (size_t i = 0; i < state.drawn.size(); ++i) {
     const Rect& r = state.drawn[i];
     const int x = std::clamp(int(r.x * sx), 0, fbw - 1), y = std::clamp(int(r.y * sy), 0, fbh - 1);
@@ -252,21 +258,16 @@ void writePanelShots(GLFWwindow* window, const PanelState& state, const std::str
 }
 
 // The first view: the terrain in the middle the panels leave free.
-Orbit fitOrbit(const Frame& frame, GLFWwindow* window, const Rect& free) {
-  int w = 0, h = 0, fbw = 0, fbh = 0;
-  glfwGetWindowSize(window, &w, &h);
-  glfwGetFramebufferSize(window, &fbw, &fbh);
-  const float aspect = float(std::max(fbw, 16)) / float(std::max(fbh, 16));
-  return fitOrbit(frame, orbitFor(frame), aspect, w, h, free.x, free.y, free.w, free.h);
+Orbit fitOrbit(const Frame& frame, const WindowSize& size, const Rect& free) {
+  return fitOrbit(frame, orbitFor(frame), size.aspect(), size.w, size.h, free.x, free.y, free.w,
+                  free.h);
 }
 
 // The panels' places for this frame, in the window's pixels (ImGui's and the mouse's).
-void layOutPanels(GLFWwindow* window, PanelState& state) {
-  int w = 0, h = 0;
-  glfwGetWindowSize(window, &w, &h);
+void layOutPanels(const WindowSize& size, PanelState& state) {
   LayoutStyle style;
   style.title = std::max(ImGui::GetFrameHeight(), 20.0f);  // (before the first frame: 0 + padding)
-  state.layout = layOut(float(w), float(h), state.wishes, style);
+  state.layout = layOut(float(size.w), float(size.h), state.wishes, style);
 }
 
 }  // namespace
@@ -307,9 +308,10 @@ int runApp(const SceneSpec& spec, const AppOptions& o) {
     const Snapshot& snap = worker.latest();
     messages.read(snap, actions);
     plots.addSteps(snap);
-    layOutPanels(window, state);
-    if (!orbit) orbit = fitOrbit(snap.frame, window, state.layout.free);
-    actions.setView(viewOf(window, snap, *orbit, renderer));
+    const WindowSize size(window);
+    layOutPanels(size, state);
+    if (!orbit) orbit = fitOrbit(snap.frame, size, state.layout.free);
+    actions.setView(viewOf(size, snap, *orbit, renderer));
     replay.play(frames, actions);
     applyShortcuts(keys.take(), actions);
     const int hovered = mouse.read(window, actions, *orbit, replay.holdsMouse());
@@ -326,7 +328,7 @@ int runApp(const SceneSpec& spec, const AppOptions& o) {
     renderer.blitTo(renderer.width(), renderer.height());
     drawPanels(snap, worker.spec(), actions, hovered, state, plots);
     if (!o.panelShots.empty() && frames + 1 == o.quitAfterFrames)
-      writePanelShots(window, state, o.panelShots);
+      writePanelShots(size, state, o.panelShots);
     context->swapBuffers();
 
     ++frames;
@@ -335,12 +337,10 @@ int runApp(const SceneSpec& spec, const AppOptions& o) {
     if (o.quitAfterSeconds > 0 && glfwGetTime() - opened >= o.quitAfterSeconds) break;
   }
   if (!o.screenshot.empty()) renderer.writePng(o.screenshot);
-  {
-    int w = 0, h = 0;
-    glfwGetWindowSize(window, &w, &h);
-    actions.log().push_back(checkLayout(state.layout, state.drawn, state.cut, float(w), float(h)));
-    actions.log().push_back("water quality " + state.budget.describe());
-  }
+  const WindowSize size(window);
+  actions.log().push_back(
+      checkLayout(state.layout, state.drawn, state.cut, float(size.w), float(size.h)));
+  actions.log().push_back("water quality " + state.budget.describe());
   const long errors = context->errors();
   imgui.reset();
   worker.poll();
