@@ -112,6 +112,9 @@ struct Ledger {
   double energy = 0;           ///< the mechanical energy given to the fluid [J] (energyLedger)
   SedimentDefects defects;
   InvariantReport invariants;
+  /// Particles put back onto the terrain's wall surface after the drift carried them through it
+  /// (World::step): impacts faster than the penalty holds.
+  long terrainContacts = 0;
 
   void save(std::ostream& out) const;
   /// `version`: of the world state being read (defects from version 2 on).
@@ -201,6 +204,8 @@ class World {
   long removedByOutflow() const { return ledger_.removedByOutflow; }
   long emitted() const { return ledger_.emitted; }
   long painted() const { return ledger_.painted; }
+  /// Particles the hard floor under the penalty put back onto the terrain (Ledger).
+  long terrainContacts() const { return ledger_.terrainContacts; }
   long blockedSlots() const;
   /// Mechanical energy of the fluid now, Σ m (½|v|² + g y) [J].
   double mechanicalEnergy() const;

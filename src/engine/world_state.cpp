@@ -69,8 +69,8 @@ void getVec(std::istream& in, std::vector<T>& v, const char* what, uint64_t expe
 
 constexpr uint32_t kStateTag = 0x444C5257;  // "WRLD"
 // Version 2 adds the sediment defects (naive advection), version 3 the last density rate (the
-// next Δt's bound); older states load with none.
-constexpr uint32_t kStateVersion = 3;
+// next Δt's bound), version 4 the count of terrain contacts; older states load with none.
+constexpr uint32_t kStateVersion = 4;
 
 }  // namespace
 
@@ -79,6 +79,7 @@ void Ledger::save(std::ostream& o) const {
   put(o, painted);
   put(o, invariants);
   put(o, defects);
+  put(o, terrainContacts);
 }
 
 void Ledger::load(std::istream& in, uint32_t version) {
@@ -88,6 +89,8 @@ void Ledger::load(std::istream& in, uint32_t version) {
   get(in, invariants, "invariants");
   defects = {};
   if (version >= 2) get(in, defects, "sediment defects");
+  terrainContacts = 0;
+  if (version >= 4) get(in, terrainContacts, "terrain contacts");
 }
 
 void Supply::saveProgress(std::ostream& o) const {

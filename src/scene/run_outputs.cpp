@@ -111,6 +111,7 @@ json RunOutputs::finish(const World& w, const RunEnd& end, double wallSeconds) {
   summary["invariants"] = {{"nan", inv.nan},
                            {"max_penetration_over_ds", inv.max_penetration_over_ds},
                            {"escaped", inv.escaped},
+                           {"terrain_contacts", w.terrainContacts()},
                            {"c_min", inv.c_min},
                            {"c_max", inv.c_max}};
   const SoilBudget soil = w.soilBudget();

@@ -68,16 +68,12 @@ h1=$(python3 -c "import json;print(json.load(open('$tmp/t1/summary.json'))['stat
 h2=$(python3 -c "import json;print(json.load(open('$tmp/t2/summary.json'))['state_hash'])")
 [ "$h1" = "$h2" ] || { echo "state hash differs: $h1 vs $h2"; exit 1; }
 echo "hash identical at 1 and 2 threads: $h1"
-# A violated invariant: exit 3, the message names step and particle, summary.json says so.
-set +e
-msg=$("$scour" run slope --headless --steps 3000 --set fluid.gravity=100 --set boundary.penalty_stiffness=1 \
-      --set boundary.penalty_damping=1 --out "$tmp/bad" 2>&1)
-rc=$?
-set -e
-[ $rc -eq 3 ] || { echo "expected exit 3, got $rc: $msg"; exit 1; }
-grep -q "invariant violated at step " <<<"$msg" || { echo "message: $msg"; exit 1; }
-python3 -c "import json,sys; s=json.load(open('$tmp/bad/summary.json')); assert s['status']=='invariant_violated' and 'particle' in s['error'], s"
-echo "invariant violation reported: $(head -1 <<<"$msg")"
+# A penalty far too soft for 10 g (a slider dragged in the window): the hard floor under the
+# penalty holds the water, the run ends well and summary.json counts the particles it caught.
+"$scour" run slope --steps 1500 --set fluid.gravity=100 --set boundary.penalty_stiffness=1 \
+      --set boundary.penalty_damping=1 --out "$tmp/soft" >/dev/null 2>&1
+python3 -c "import json,sys; s=json.load(open('$tmp/soft/summary.json')); i=s['invariants']; assert s['status']=='ok' and i['terrain_contacts']>0 and i['max_penetration_over_ds']<1e-4, s"
+echo "a soft penalty held by the floor: $(python3 -c "import json; print(json.load(open('$tmp/soft/summary.json'))['invariants']['terrain_contacts'])") contacts"
 # A blow-up from a fixed step 40× the CFL step flings particles kilometres away: the run stops
 # with exit 3 and a summary (before, the neighbor grid of the flung particles ran out of memory).
 set +e
@@ -85,6 +81,7 @@ msg=$("$scour" run dambreak --scale 0.2 --headless --steps 300 --set time.fixed_
 rc=$?
 set -e
 [ $rc -eq 3 ] || { echo "blow-up: expected exit 3, got $rc: $msg"; exit 1; }
+grep -q "invariant violated at step " <<<"$msg" || { echo "message: $msg"; exit 1; }
 python3 -c "import json,sys; s=json.load(open('$tmp/blow/summary.json')); assert s['status']=='invariant_violated' and ('simulation box' in s['error'] or 'non-finite' in s['error']), s"
 echo "blow-up stopped: $(head -1 <<<"$msg" | cut -c1-160)"
 # --set edits the scene before it is built: a new spacing refills the water at that spacing.

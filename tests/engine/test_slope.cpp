@@ -33,10 +33,8 @@ TEST_CASE("no particle penetrates the terrain on a slope", "[physics][boundary]"
 TEST_CASE("a violated invariant stops the run with a message naming step and particle",
           "[invariants]") {
   Scene s = makePreset("slope");
-  // Gravity 50× and a penalty far too soft to hold it: particles fall through the terrain.
-  s.desc.params.gravity = 100.0;
-  s.desc.params.penalty_stiffness = 1.0;
-  s.desc.params.penalty_damping = 1.0;
+  // A fixed step 20× the one the sound speed allows: the run blows up.
+  s.desc.params.fixed_dt = 0.01;
   World w(s.desc);
   std::string message;
   try {
@@ -45,8 +43,31 @@ TEST_CASE("a violated invariant stops the run with a message naming step and par
     message = e.what();
   }
   REQUIRE_FALSE(message.empty());
-  // Whichever it meets first, a particle deep in the terrain or one through a wall.
-  CHECK_THAT(message, Catch::Contains("step ") && Catch::Contains("particle ") &&
-                          (Catch::Contains("below the terrain") ||
-                           Catch::Contains("left the domain through a closed wall")));
+  CHECK_THAT(message, Catch::StartsWith("step ") && Catch::Contains("particle ") &&
+                          (Catch::Contains("non-finite") || Catch::Contains("left the simulation box")));
+}
+
+// The window's lost session (issue 14): the eq. (6) penalty and the wall pressure are forces,
+// and a force too weak for what comes at it (here a penalty slider dragged to K_S = 1/s², with
+// gravity 10×) lets particles sink into the terrain: without more, they went 0.5 Δs deep within
+// a few hundred steps and the run stopped. The hard floor under the penalty puts every particle
+// the drift carried through back onto the wall surface, its velocity into it removed: the water
+// rests on the terrain, and no energy is made.
+TEST_CASE("a penalty too soft to hold the water: the hard floor holds it", "[physics][boundary]") {
+  Scene s = makePreset("slope");
+  s.desc.params.gravity = 98.1;
+  s.desc.params.penalty_stiffness = 1.0;
+  s.desc.params.penalty_damping = 1.0;
+  World w(s.desc);
+  const double ds = s.desc.params.spacing;
+  for (int k = 0; k < 1500; ++k) REQUIRE_NOTHROW(w.step());
+  const auto& inv = w.invariants();
+  INFO(w.terrainContacts() << " contacts, deepest " << inv.max_penetration_over_ds << " Δs");
+  CHECK(w.terrainContacts() > 0);
+  CHECK(inv.max_penetration_over_ds < 1e-4);
+  for (const auto& x : w.fluid().x) {
+    const SurfacePoint sp = w.terrain().surface(x.x(), x.z());
+    REQUIRE((sp.height - x.y()) * sp.normal.y() / ds < 1e-4);
+  }
+  CHECK(w.mechanicalEnergy() <= w.energyLedger());
 }
