@@ -34,7 +34,7 @@ const Golden kGolden[] = {
     {"block", 0.05, 100, 0x9428ce3c9067117ULL, 0x1.65833d5a26f0dp-6, 0x1.3ce40649d177p-18},
     {"settling", 1, 100, 0x8a9bab438f291d0dULL, 0x1.0971822b2a4d3p-68, 0x1.9f5ebf27e9c14p-15},
     {"diffusion", 1, 100, 0x2f0f91684bc06df5ULL, 0x1.e5679cacdfda3p-18, 0x1.ffa0d07f30b39p-12},
-    {"canyon", 0.03, 100, 0x175b55a12845bbdbULL, 0x1.8eb9928a25f77p+5, 0x1.49ef19ba49f2p-22},
+    {"canyon", 0.03, 100, 0x6fed055c1bcbea8dULL, 0x1.8eb9928a26389p+5, 0x1.49ed16979559cp-22},
     {"lake", 0.03, 100, 0x1c979de5586d9ebbULL, 0x1.dc39983557c59p+2, 0x1.9bceb8773479ap-25},
     {"waterfall", 0.01, 100, 0x9b9bd13e986d3f58ULL, 0x1.443cc733ae64ap+4, 0x1.767aaf70552f1p-21},
     {"rain", 0.3, 100, 0xa904496d14b0d005ULL, 0x1.68b361c96745fp-1, 0x1.312d81898973fp-24},
