@@ -217,9 +217,8 @@ struct WindowSize {
   float aspect() const { return float(fbw) / float(fbh); }
 };
 
-// The view the actions pick through this frame; sizes the renderer to the framebuffer.
-View viewOf(const WindowSize& size, const Snapshot& snap, const Orbit& orbit, Renderer& renderer) {
-  renderer.resize(size.fbw, size.fbh);
+// The view the actions pick through this frame (in window pixels, whatever the 3D view's size).
+View viewOf(const WindowSize& size, const Snapshot& snap, const Orbit& orbit) {
   return {&snap, orbit.camera(), size.aspect(), size.w, size.h};
 }
 
@@ -289,14 +288,23 @@ int runApp(const SceneSpec& spec, const AppOptions& o) {
   PanelState state;
   state.settings.terrain = RenderSettings::Terrain(o.terrain);
   state.budget.choose(o.quality);
-  state.screenshot = [&](const std::string& path) { renderer.writePng(path); };
+  std::optional<Orbit> orbit;
+  // A picture at the window's full size, whatever size the level draws the 3D view at.
+  state.screenshot = [&](const std::string& path) {
+    const WindowSize size(window);
+    if (orbit && (renderer.width() != size.fbw || renderer.height() != size.fbh)) {
+      renderer.resize(size.fbw, size.fbh);
+      renderer.render(worker.latest().frame, orbit->camera(), state.budget.apply(state.settings));
+    }
+    renderer.writePng(path);
+  };
   ReplayPlayer replay(std::move(events), state.screenshot);
   Mouse mouse;
   WorkerMessages messages;
   TimePlots plots;
-  std::optional<Orbit> orbit;
   const double opened = glfwGetTime();
-  long frames = 0, firstStep = -1;
+  long frames = 0, firstStep = -1, rebuilds = 0;
+  double frameStart = opened;
 
   closeRequested = 0;
   auto request = [](int) { closeRequested = 1; };
@@ -311,32 +319,43 @@ int runApp(const SceneSpec& spec, const AppOptions& o) {
     const WindowSize size(window);
     layOutPanels(size, state);
     if (!orbit) orbit = fitOrbit(snap.frame, size, state.layout.free);
-    actions.setView(viewOf(size, snap, *orbit, renderer));
+    actions.setView(viewOf(size, snap, *orbit));
     replay.play(frames, actions);
     applyShortcuts(keys.take(), actions);
     const int hovered = mouse.read(window, actions, *orbit, replay.holdsMouse());
 
     const double t0 = glfwGetTime();
+    const auto [viewW, viewH] = state.budget.viewSize(size.fbw, size.fbh);
+    renderer.resize(viewW, viewH);
+    const bool rebuild = state.budget.rebuild(fresh || frames == 0);
+    rebuilds += rebuild;
     RenderSettings drawn = state.budget.apply(state.settings);
     drawn.same_frame = !fresh && frames > 0;
+    drawn.keep_surface = !rebuild;
     renderer.render(snap.frame, orbit->camera(), drawn);
     glFinish();
     plots.addRender(glfwGetTime() - t0);
-    state.budget.measured(glfwGetTime() - t0);
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
-    glViewport(0, 0, renderer.width(), renderer.height());
-    renderer.blitTo(renderer.width(), renderer.height());
+    glViewport(0, 0, size.fbw, size.fbh);
+    renderer.blitTo(size.fbw, size.fbh);
     drawPanels(snap, worker.spec(), actions, hovered, state, plots);
     if (!o.panelShots.empty() && frames + 1 == o.quitAfterFrames)
       writePanelShots(size, state, o.panelShots);
     context->swapBuffers();
+    // The budget is for the whole frame the user waits for: the 3D view, the panels, the swap.
+    state.budget.measured(glfwGetTime() - t0);
+    if (o.stats) {
+      const double now = glfwGetTime();
+      o.stats->frameSeconds.push_back(now - frameStart);
+      frameStart = now;
+    }
 
     ++frames;
     if (firstStep < 0) firstStep = snap.frame.step;
     if (o.quitAfterFrames > 0 && frames >= o.quitAfterFrames) break;
     if (o.quitAfterSeconds > 0 && glfwGetTime() - opened >= o.quitAfterSeconds) break;
   }
-  if (!o.screenshot.empty()) renderer.writePng(o.screenshot);
+  if (!o.screenshot.empty()) state.screenshot(o.screenshot);
   const WindowSize size(window);
   actions.log().push_back(
       checkLayout(state.layout, state.drawn, state.cut, float(size.w), float(size.h)));
@@ -345,9 +364,11 @@ int runApp(const SceneSpec& spec, const AppOptions& o) {
   imgui.reset();
   worker.poll();
   const Snapshot& last = worker.latest();
-  if (o.stats)
-    *o.stats = {frames, last.frame.step - std::max(firstStep, 0L), glfwGetTime() - opened,
-                state.budget.describe()};
+  if (o.stats) {
+    o.stats->frames = frames, o.stats->steps = last.frame.step - std::max(firstStep, 0L);
+    o.stats->seconds = glfwGetTime() - opened;
+    o.stats->quality = state.budget.describe(), o.stats->rebuilds = rebuilds;
+  }
   std::cout << exitReport(last, frames, actions, errors);
   return errors == 0 ? 0 : 1;
 }

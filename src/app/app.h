@@ -25,6 +25,8 @@ struct AppOptions {
     long frames = 0, steps = 0;  ///< drawn; simulated while the window was open
     double seconds = 0;
     std::string quality;  ///< the water's quality at the end (RenderBudget::describe)
+    long rebuilds = 0;    ///< frames that rebuilt the water surface
+    std::vector<double> frameSeconds;  ///< each frame, from the start of one to the next
   };
   Stats* stats = nullptr;    ///< filled on closing when set
 };

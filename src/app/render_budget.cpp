@@ -22,12 +22,13 @@ constexpr double kStep = 2.5;
 
 const std::array<RenderBudget::Level, RenderBudget::kLevels>& RenderBudget::levels() {
   static const std::array<Level, kLevels> l = {{
-      {"fine", "fine", 0.75, true, true},
-      {"grid1", "grid 1 Δs", 1.0, true, true},
-      {"grid1.5", "grid 1.5 Δs", 1.5, true, true},
-      {"grid2.25", "grid 2.25 Δs, no caustics", 2.25, false, true},
-      {"grid3", "grid 3 Δs, no caustics or refraction", 3.0, false, false},
-      {"particles", "particles only", 0.0, false, false},
+      {"fine", "fine", 0.75, true, true, 1.0},
+      {"grid1", "grid 1 Δs", 1.0, true, true, 1.0},
+      {"grid1.5", "grid 1.5 Δs", 1.5, true, true, 1.0},
+      {"grid2.25", "grid 2.25 Δs, no caustics", 2.25, false, true, 1.0},
+      {"grid3", "grid 3 Δs, no caustics or refraction", 3.0, false, false, 1.0},
+      {"grid3-half", "grid 3 Δs, no caustics or refraction, half resolution", 3.0, false, false, 0.5},
+      {"particles", "particles only, half resolution", 0.0, false, false, 0.5},
   }};
   return l;
 }
@@ -44,8 +45,54 @@ int RenderBudget::parse(const std::string& key) {
 
 void RenderBudget::choose(int level) {
   choice_ = std::clamp(level, -1, kLevels - 1);
-  if (choice_ >= 0) level_ = choice_;
+  if (choice_ >= 0) moveTo(choice_);
   framesAtLevel_ = 0;
+}
+
+void RenderBudget::moveTo(int level) {
+  level_ = std::clamp(level, 0, kLevels - 1);
+  framesAtLevel_ = 0;
+  build_ = {}, draw_ = {}, all_ = {};
+  stale_ = true, sinceRebuild_ = kMaxEvery;  // a new grid: the renderer rebuilds at once
+}
+
+double RenderBudget::Recent::value() const {
+  if (n == 0) return 0;
+  if (n >= 3) return median3(t);
+  double sum = 0;
+  for (int k = 0; k < n; ++k) sum += t[size_t(k)];
+  return sum / n;
+}
+
+int RenderBudget::everyFor(double b, double d, double budget) {
+  if (b <= budget) return 1;
+  if (d >= budget) return kMaxEvery;
+  for (int k = 2; k < kMaxEvery; ++k)
+    if (mean(b, d, k) <= budget) return k;
+  return kMaxEvery;
+}
+
+int RenderBudget::every() const {
+  if (levels()[size_t(level_)].cellOverSpacing == 0) return 1;
+  const double b = build_.n ? build_.value() : seenBuild_[size_t(level_)];
+  const double d = draw_.n ? draw_.value() : seenDraw_[size_t(level_)];
+  return b > 0 ? everyFor(b, d, budget_) : 1;
+}
+
+bool RenderBudget::rebuild(bool newFrame) {
+  stale_ = stale_ || newFrame;
+  const bool surface = levels()[size_t(level_)].cellOverSpacing > 0;
+  rebuilding_ = surface && stale_ && sinceRebuild_ + 1 >= every();
+  if (rebuilding_)
+    stale_ = false, sinceRebuild_ = 0;
+  else
+    ++sinceRebuild_;
+  return rebuilding_;
+}
+
+std::pair<int, int> RenderBudget::viewSize(int w, int h) const {
+  const double r = levels()[size_t(level_)].resolution;
+  return {std::max(16, int(std::lround(w * r))), std::max(16, int(std::lround(h * r)))};
 }
 
 RenderSettings RenderBudget::apply(RenderSettings s) const {
@@ -63,39 +110,59 @@ RenderSettings RenderBudget::apply(RenderSettings s) const {
 }
 
 void RenderBudget::measured(double seconds) {
-  recent_[size_t(framesAtLevel_ % 3)] = seconds;
   ++framesAtLevel_;
-  if (framesAtLevel_ >= 3) seen_[size_t(level_)] = median3(recent_);
+  (rebuilding_ ? build_ : draw_).add(seconds);
+  all_.add(seconds);
+  const double b = build_.value(), d = draw_.value();
+  if (build_.n) seenBuild_[size_t(level_)] = b;
+  if (draw_.n) seenDraw_[size_t(level_)] = d;
   if (choice_ >= 0) return;
-  auto moveTo = [&](int level) {
-    level_ = std::clamp(level, 0, kLevels - 1);
-    framesAtLevel_ = 0;
-    recent_ = {};
-  };
-  // Far over the budget (a first frame of a big scene): down as many levels as it takes.
-  if (framesAtLevel_ == 1 && seconds > 3 * budget_ && level_ < kLevels - 1) {
-    moveTo(level_ + std::max(1, int(std::ceil(std::log(seconds / budget_) / std::log(kStep)))));
+  // Far over the hitch (a first frame of a big scene): down as many levels as it takes.
+  if (framesAtLevel_ == 1 && seconds > 3 * hitch_ && level_ < kLevels - 1) {
+    moveTo(level_ + std::max(1, int(std::ceil(std::log(seconds / hitch_) / std::log(kStep)))));
     return;
   }
-  const double now = framesAtLevel_ >= 3 ? median3(recent_) : 0;
-  if (framesAtLevel_ >= 3 && now > budget_ && level_ < kLevels - 1) {
+  // Down a level when the drawing alone misses the budget, a rebuild stalls the picture, or even
+  // the rarest rebuild leaves the mean over the budget.
+  const bool slowDraw = draw_.n >= 3 && d > budget_;
+  const bool slowBuild = build_.n >= 2 && b > hitch_;
+  const bool slowMean = build_.n >= 2 && draw_.n >= 3 && mean(b, d, kMaxEvery) > budget_;
+  if ((slowDraw || slowBuild || slowMean) && level_ < kLevels - 1) {
     moveTo(level_ + 1);
     return;
   }
-  // Up a level when it has room: as last measured there, or as estimated from this one. An old
-  // measurement (the scene may have changed since) is tried again after a few hundred frames.
-  if (level_ > 0 && framesAtLevel_ >= 30 && now < 0.5 * budget_) {
-    const double finer = seen_[size_t(level_ - 1)];
-    const double estimate = finer > 0 && framesAtLevel_ < 300 ? finer : now * kStep;
-    if (estimate < 0.8 * budget_) moveTo(level_ - 1);
+  // Up a level when it has room: as last measured there, or as estimated from this one (a frame
+  // that rebuilds bounds one that does not). The estimate misses what every frame costs besides
+  // the water (the panels, the swap, the engine's threads on the same cores), so a finer level
+  // last seen near its limits is tried again, for real, every few hundred frames: if it does not
+  // fit, a few frames bring the quality back down.
+  if (level_ > 0 && framesAtLevel_ >= 30) {
+    const double here = all_.value();
+    const double b0 = build_.n ? b : here, d0 = draw_.n ? d : here;
+    const bool old = framesAtLevel_ >= 300;  // the scene may have changed since
+    const double seenB = seenBuild_[size_t(level_ - 1)], seenD = seenDraw_[size_t(level_ - 1)];
+    const double fb = seenB > 0 && !old ? seenB : b0 * kStep, fd = seenD > 0 && !old ? seenD : d0 * kStep;
+    const bool room = fb < 0.8 * hitch_ && fd < 0.8 * budget_ && mean(fb, fd, kMaxEvery) < 0.8 * budget_;
+    const bool near = old && (seenB > 0 || seenD > 0) && seenB < 1.5 * hitch_ && seenD < 1.5 * budget_;
+    if (room || near) moveTo(level_ - 1);
   }
 }
 
 std::string RenderBudget::describe() const {
-  char buf[160];
-  const double ms = 1e3 * (framesAtLevel_ >= 3 ? median3(recent_) : seen_[size_t(level_)]);
-  std::snprintf(buf, sizeof buf, "%s: %s, %.0f ms a frame", choice_ < 0 ? "auto" : "pinned",
-                levels()[size_t(level_)].name, ms);
+  char buf[240];
+  const char* mode = choice_ < 0 ? "auto" : "pinned";
+  const char* name = levels()[size_t(level_)].name;
+  const int k = every();
+  if (k == 1) {
+    const double ms = 1e3 * (all_.n ? all_.value() : std::max(seenBuild_[size_t(level_)], seenDraw_[size_t(level_)]));
+    std::snprintf(buf, sizeof buf, "%s: %s, %.0f ms a frame", mode, name, ms);
+    return buf;
+  }
+  const double b = build_.n ? build_.value() : seenBuild_[size_t(level_)];
+  const double d = draw_.n ? draw_.value() : seenDraw_[size_t(level_)];
+  static const char* const kOrdinal[] = {"", "", "2nd", "3rd", "4th", "5th", "6th", "7th", "8th"};
+  std::snprintf(buf, sizeof buf, "%s: %s, surface every %s frame (rebuild %.0f ms, draw %.0f ms), %.0f ms a frame",
+                mode, name, kOrdinal[k], 1e3 * b, 1e3 * d, 1e3 * mean(b, d, k));
   return buf;
 }
 

@@ -4,6 +4,7 @@
 #include <chrono>
 #include <memory>
 #include <thread>
+#include <tuple>
 #include <cstdio>
 #include <iostream>
 
@@ -42,7 +43,7 @@ struct BenchOptions {
   bool paper = false;
   bool withWindow = false;
   double seconds = 5;
-  std::string size = "960x540";
+  std::string size;  ///< empty: 960x540 for --render, the window's 1280x720 for --with-window
   std::vector<std::string> sets;
 };
 
@@ -122,7 +123,7 @@ int benchRender(const BenchOptions& o, const Scene& scene) {
   World world(scene.desc);
   if (const RunEnd end = runSteps(world, o.warmup); !end.ok()) return stepFailure(end);
   const Frame frame = makeFrame(world);
-  const auto [w, h] = parseSize(o.size, 16);
+  const auto [w, h] = parseSize(o.size.empty() ? "960x540" : o.size, 16);
   const auto context = createGlContext(GlBackend::kEgl);
   Renderer r(w, h);
   const Camera cam = overviewCamera(frame);
@@ -272,24 +273,40 @@ int benchWindow(const BenchOptions& o, const Scene& scene) {
             std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   }
   AppOptions a;
-  a.width = 960, a.height = 540;
+  if (!o.size.empty()) std::tie(a.width, a.height) = parseSize(o.size, 16);
   a.quitAfterSeconds = o.seconds;
   AppOptions::Stats st;
   a.stats = &st;
   runApp(scene.spec, a);
   const double windowed = double(st.steps) / st.seconds;
+  // The frames after the first second (the first ones open the window and find the level).
+  std::vector<double> frames;
+  double at = 0;
+  for (double t : st.frameSeconds) {
+    if (at >= 1.0) frames.push_back(t);
+    at += t;
+  }
+  if (frames.empty()) frames = st.frameSeconds;
+  std::sort(frames.begin(), frames.end());
+  auto quantile = [&](double q) { return frames.empty() ? 0.0 : frames[size_t(q * double(frames.size() - 1))]; };
   json j = {{"scene", o.scene}, {"particles", scene.desc.particles.size()}, {"seconds", o.seconds},
-            {"threads", omp_get_max_threads()}, {"steps_per_second_no_window", alone},
-            {"steps_per_second_with_window", windowed}, {"window_frames_per_second", double(st.frames) / st.seconds}, {"water_quality", st.quality},
-            {"ratio", windowed / std::max(alone, 1e-12)}};
+            {"threads", omp_get_max_threads()}, {"window", std::to_string(a.width) + "x" + std::to_string(a.height)},
+            {"steps_per_second_no_window", alone}, {"steps_per_second_with_window", windowed},
+            {"window_frames_per_second", double(st.frames) / st.seconds},
+            {"frame_seconds_median", quantile(0.5)}, {"frame_seconds_p95", quantile(0.95)},
+            {"frame_seconds_max", frames.empty() ? 0.0 : frames.back()},
+            {"surface_rebuilds_per_second", double(st.rebuilds) / st.seconds},
+            {"water_quality", st.quality}, {"ratio", windowed / std::max(alone, 1e-12)}};
   if (o.json) {
     std::cout << j.dump(2) << "\n";
     return kExitOk;
   }
   std::printf("engine steps per second, %s (%zu particles), %.0f s each: no window %.1f, window open %.1f "
-              "(%.0f%%; the window drew %.1f frames/s, water quality %s)\n",
+              "(%.0f%%)\nthe %dx%d window drew %.1f frames/s (frame median %.0f ms, 95%% within %.0f ms, "
+              "longest %.0f ms), the water surface %.1f times a second; water quality %s\n",
               o.scene.c_str(), scene.desc.particles.size(), o.seconds, alone, windowed, 100 * windowed / alone,
-              double(st.frames) / st.seconds, st.quality.c_str());
+              a.width, a.height, double(st.frames) / st.seconds, 1e3 * quantile(0.5), 1e3 * quantile(0.95),
+              1e3 * double(j["frame_seconds_max"]), double(st.rebuilds) / st.seconds, st.quality.c_str());
   return kExitOk;
 }
 
@@ -386,7 +403,7 @@ Command addBenchCommand(CLI::App& app) {
               "Turn on erosion, settling, diffusion and deposition, with C = 0.01 everywhere");
   c->add_flag("--render", o->render,
               "Time the renderer instead: splat, occupancy, march, shading, with and without the occupancy grid");
-  c->add_option("--size", o->size, "Picture size for --render (default 960x540)");
+  c->add_option("--size", o->size, "Picture size for --render (default 960x540), window size for --with-window (default 1280x720)");
   c->add_flag("--with-window", o->withWindow,
               "Engine steps per second with the window open and with none (needs a display)");
   c->add_option("--seconds", o->seconds, "How long each --with-window phase runs (default 5)")->check(kPositive);

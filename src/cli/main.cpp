@@ -30,7 +30,7 @@ int main(int argc, char** argv) {
   app.add_flag("--paused", window.paused, "Start paused");
   app.add_option("--replay", window.replay, "Play scripted input events from a file (docs/app.md)");
   std::string windowQuality = "auto";
-  app.add_option("--quality", windowQuality, "The water's quality: auto (as the frame budget allows; default), fine, grid1, grid1.5, grid2.25, grid3, particles");
+  app.add_option("--quality", windowQuality, "The water's quality: auto (as the frame budget allows; default), fine, grid1, grid1.5, grid2.25, grid3, grid3-half, particles");
   std::string windowTerrain = "erosion";
   app.add_option("--terrain", windowTerrain, "Terrain colours at the start: erosion (default), shaded, sediment");
   Command run = addRunCommand(app);

@@ -303,16 +303,39 @@ void Renderer::lightPass(const Frame& f, const RenderSettings& s, const Eigen::M
   glEnable(GL_DEPTH_TEST);
 }
 
+template <class Value>
+void Renderer::uploadParticles(const Frame& f, Value value) {
+  std::vector<float> packed(4 * f.particles());
+  for (size_t i = 0; i < f.particles(); ++i) {
+    for (int k = 0; k < 3; ++k) packed[4 * i + size_t(k)] = f.position[i][k];
+    packed[4 * i + 3] = value(i);
+  }
+  if (!particleBuffer_ || particleCap_ < packed.size()) {
+    if (particleBuffer_) glDeleteBuffers(1, &particleBuffer_);
+    glCreateBuffers(1, &particleBuffer_);
+    particleCap_ = packed.size();
+    glNamedBufferData(particleBuffer_, GLsizeiptr(particleCap_ * sizeof(float)), nullptr, GL_DYNAMIC_DRAW);
+  }
+  glNamedBufferSubData(particleBuffer_, 0, GLsizeiptr(packed.size() * sizeof(float)), packed.data());
+  glVertexArrayVertexBuffer(particleVao_, 0, particleBuffer_, 0, 16);
+}
+
 void Renderer::render(const Frame& f, const Camera& c, const RenderSettings& s) {
   if (!s.same_frame) uploadTerrain(f);
   const bool water = s.water && f.particles() > 0;
-  const bool built = s.same_frame && surfaceBuilt_ && builtParticles_ == f.particles() &&
-                     builtWith_.cell_over_spacing == s.surface.cell_over_spacing &&
-                     builtWith_.iso == s.surface.iso && builtWith_.occupancy == s.surface.occupancy;
+  const bool sameSurface = surfaceBuilt_ && builtWith_.cell_over_spacing == s.surface.cell_over_spacing &&
+                           builtWith_.iso == s.surface.iso && builtWith_.occupancy == s.surface.occupancy;
+  // The surface built last is of this very frame, or kept from an older one.
+  const bool current = sameSurface && s.same_frame && !surfaceOld_ && builtParticles_ == f.particles();
+  const bool built = current || (sameSurface && s.keep_surface);
+  const bool kept = built && !current;
   if (water && !built) {
     surface_.setSettings(s.surface);
     surface_.update(f);
     surfaceBuilt_ = true, builtWith_ = s.surface, builtParticles_ = f.particles();
+    lightBuilt_ = false, surfaceOld_ = false;
+  } else if (water && kept) {
+    surfaceOld_ = true;
   }
   // The scene's extent, for the clip planes and the sun's view.
   const Eigen::Vector3f lo(float(f.x0), heightMin_, float(f.z0));
@@ -328,7 +351,12 @@ void Renderer::render(const Frame& f, const Camera& c, const RenderSettings& s) 
   if (caustics) {
     const Eigen::Vector3f up = std::abs(sun.y()) > 0.99f ? Eigen::Vector3f(0, 0, 1) : Eigen::Vector3f(0, 1, 0);
     lightClipFromWorld_ = ortho(-radius, radius, -radius, radius, 0.0f, 4 * radius) * lookAt(centre + 2 * radius * sun, centre, up);
-    lightPass(f, s, lightClipFromWorld_);
+    // The maps follow the surface (and the sun): a kept surface keeps them, though the terrain
+    // under them may have moved by a frame's erosion.
+    if (!lightBuilt_ || !built || litBy_ != sun || litMap_ != s.caustic_map) {
+      lightPass(f, s, lightClipFromWorld_);
+      lightBuilt_ = true, litBy_ = sun, litMap_ = s.caustic_map;
+    }
   }
   // Background: the terrain alone.
   glViewport(0, 0, width_, height_);
@@ -378,26 +406,16 @@ void Renderer::render(const Frame& f, const Camera& c, const RenderSettings& s) 
     water_.use();
     drawWater();
     if (s.spray && s.particles == RenderSettings::Particles::kOff)
-      drawSpray(f, c, clipFromWorld, float(s.surface.iso));
+      drawSpray(f, c, clipFromWorld, float(s.surface.iso), kept);
   }
   if (s.particles != RenderSettings::Particles::kOff && f.particles() > 0) {
     const bool bySpeed = s.particles == RenderSettings::Particles::kSpeed;
-    std::vector<float> packed(4 * f.particles());
     float top = 1e-12f;
-    for (size_t i = 0; i < f.particles(); ++i) {
+    uploadParticles(f, [&](size_t i) {
       const float v = bySpeed ? f.speed[i] : f.concentration[i];
       top = std::max(top, v);
-      for (int k = 0; k < 3; ++k) packed[4 * i + size_t(k)] = f.position[i][k];
-      packed[4 * i + 3] = v;
-    }
-    if (!particleBuffer_ || particleCap_ < packed.size()) {
-      if (particleBuffer_) glDeleteBuffers(1, &particleBuffer_);
-      glCreateBuffers(1, &particleBuffer_);
-      particleCap_ = packed.size();
-      glNamedBufferData(particleBuffer_, GLsizeiptr(particleCap_ * sizeof(float)), nullptr, GL_DYNAMIC_DRAW);
-    }
-    glNamedBufferSubData(particleBuffer_, 0, GLsizeiptr(packed.size() * sizeof(float)), packed.data());
-    glVertexArrayVertexBuffer(particleVao_, 0, particleBuffer_, 0, 16);
+      return v;
+    });
     setMatrix(particles_, "clipFromWorld", clipFromWorld);
     glProgramUniform1f(particles_.id(), particles_.location("pointSize"), spritePixels(f, c, height_));
     glProgramUniform2f(particles_.id(), particles_.location("valueRange"), 0.0f, top);
@@ -409,8 +427,10 @@ void Renderer::render(const Frame& f, const Camera& c, const RenderSettings& s) 
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
 }
 
+// `keptSurface`: the surface is an older frame's, so this frame's particles are tested against
+// its grid (those that moved out of it show); else the ones the surface was built from.
 void Renderer::drawSpray(const Frame& f, const Camera& c, const Eigen::Matrix4f& clipFromWorld,
-                         float iso) {
+                         float iso, bool keptSurface) {
   const DensityGrid& g = surface_.grid();
   if (g.nodes.minCoeff() < 2) return;
   const GLuint sp = spray_.id();
@@ -422,7 +442,10 @@ void Renderer::drawSpray(const Frame& f, const Camera& c, const Eigen::Matrix4f&
   glProgramUniform1f(sp, spray_.location("isoFixed"), float(iso * g.scale));
   glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);  // the splat's atomics, read here
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, surface_.densityBuffer());
-  glVertexArrayVertexBuffer(particleVao_, 0, surface_.particleBuffer(), 0, 16);
+  if (keptSurface)
+    uploadParticles(f, [](size_t) { return 1.0f; });
+  else
+    glVertexArrayVertexBuffer(particleVao_, 0, surface_.particleBuffer(), 0, 16);
   glEnable(GL_PROGRAM_POINT_SIZE);
   spray_.use();
   glBindVertexArray(particleVao_);

@@ -40,6 +40,11 @@ struct RenderSettings {
   /// The frame is the one drawn last (the window between two steps): its terrain and, if the
   /// surface's settings are unchanged, its surface are kept, not built again.
   bool same_frame = false;
+  /// Draw the surface built last even for a new frame (the window, when the frame budget allows
+  /// a rebuild only every few frames): the terrain is the new frame's, and the new frame's
+  /// particles outside the old surface show as spray. The caustics, which follow the surface,
+  /// are kept with it. Ignored when nothing was built yet or the surface's settings changed.
+  bool keep_surface = false;
   float change_scale = 0;   ///< |Δh| for full false colour [m]; 0: the frame's largest
   float refraction_strength = 0.05f;
   float caustic_strength = 0.7f;
@@ -84,9 +89,16 @@ class Renderer {
   WaterSurface surface_;
   /// The spray pass: the surface's particles outside it, as sprites.
   void drawSpray(const Frame& f, const Camera& c, const Eigen::Matrix4f& clipFromWorld,
-                 float iso);
+                 float iso, bool keptSurface);
+  /// Packs the frame's positions (w: `value(i)`, or 1) into particleBuffer_.
+  template <class Value>
+  void uploadParticles(const Frame& f, Value value);
   Program terrain_, water_, lightTerrain_, lightWater_, photon_, particles_, spray_;
   bool surfaceBuilt_ = false;  ///< for the settings and the particle count below
+  bool surfaceOld_ = false;   ///< the surface is of a frame before the one drawn last
+  bool lightBuilt_ = false;    ///< the caustics maps are of the surface built last, in this sun
+  Eigen::Vector3f litBy_ = Eigen::Vector3f::Zero();
+  int litMap_ = 0;
   SurfaceSettings builtWith_;
   size_t builtParticles_ = 0;
   GLuint emptyVao_ = 0, waterVao_ = 0, particleVao_ = 0, particleBuffer_ = 0;

@@ -35,7 +35,7 @@ set -e
 set +e
 msg=$("$scour" --quality best 2>&1); rc=$?
 set -e
-[ $rc -eq 2 ] && grep -qF -- "--quality: expected one of auto, fine, grid1, grid1.5, grid2.25, grid3, particles, found 'best'" <<<"$msg" \
+[ $rc -eq 2 ] && grep -qF -- "--quality: expected one of auto, fine, grid1, grid1.5, grid2.25, grid3, grid3-half, particles, found 'best'" <<<"$msg" \
   || { echo "bad --quality: $rc $msg"; exit 1; }
 echo "bad window options refused"
 # A scripted interaction: click the terrain in the middle of the window to place a source, and
