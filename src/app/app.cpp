@@ -327,7 +327,7 @@ int runApp(const SceneSpec& spec, const AppOptions& o) {
     const double t0 = glfwGetTime();
     const auto [viewW, viewH] = state.budget.viewSize(size.fbw, size.fbh);
     renderer.resize(viewW, viewH);
-    const bool rebuild = state.budget.rebuild(fresh || frames == 0);
+    const bool rebuild = state.budget.rebuild(fresh);  // the budget asks for one at first
     rebuilds += rebuild;
     RenderSettings drawn = state.budget.apply(state.settings);
     drawn.same_frame = !fresh && frames > 0;

@@ -74,9 +74,8 @@ int RenderBudget::everyFor(double b, double d, double budget) {
 
 int RenderBudget::every() const {
   if (levels()[size_t(level_)].cellOverSpacing == 0) return 1;
-  const double b = build_.n ? build_.value() : seenBuild_[size_t(level_)];
-  const double d = draw_.n ? draw_.value() : seenDraw_[size_t(level_)];
-  return b > 0 ? everyFor(b, d, budget_) : 1;
+  const double b = seenBuild_[size_t(level_)];
+  return b > 0 ? everyFor(b, seenDraw_[size_t(level_)], budget_) : 1;
 }
 
 bool RenderBudget::rebuild(bool newFrame) {
@@ -158,8 +157,7 @@ std::string RenderBudget::describe() const {
     std::snprintf(buf, sizeof buf, "%s: %s, %.0f ms a frame", mode, name, ms);
     return buf;
   }
-  const double b = build_.n ? build_.value() : seenBuild_[size_t(level_)];
-  const double d = draw_.n ? draw_.value() : seenDraw_[size_t(level_)];
+  const double b = seenBuild_[size_t(level_)], d = seenDraw_[size_t(level_)];
   static const char* const kOrdinal[] = {"", "", "2nd", "3rd", "4th", "5th", "6th", "7th", "8th"};
   std::snprintf(buf, sizeof buf, "%s: %s, surface every %s frame (rebuild %.0f ms, draw %.0f ms), %.0f ms a frame",
                 mode, name, kOrdinal[k], 1e3 * b, 1e3 * d, 1e3 * mean(b, d, k));

@@ -79,7 +79,8 @@ class RenderBudget {
   int framesAtLevel_ = 0, sinceRebuild_ = kMaxEvery;
   bool stale_ = true, rebuilding_ = false;
   Recent build_, draw_, all_;  ///< frames with and without a rebuild, and all, at this level
-  /// As last measured at each level (0: never): rebuild frames, draw-only frames.
+  /// As last measured at each level (0: never): rebuild frames, draw-only frames; at this level,
+  /// what build_ and draw_ hold.
   std::array<double, kLevels> seenBuild_{}, seenDraw_{};
 };
 

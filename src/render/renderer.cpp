@@ -326,16 +326,16 @@ void Renderer::render(const Frame& f, const Camera& c, const RenderSettings& s) 
   const bool sameSurface = surfaceBuilt_ && builtWith_.cell_over_spacing == s.surface.cell_over_spacing &&
                            builtWith_.iso == s.surface.iso && builtWith_.occupancy == s.surface.occupancy;
   // The surface built last is of this very frame, or kept from an older one.
-  const bool current = sameSurface && s.same_frame && !surfaceOld_ && builtParticles_ == f.particles();
+  const bool current = sameSurface && s.same_frame && !surfaceOld_;
   const bool built = current || (sameSurface && s.keep_surface);
   const bool kept = built && !current;
   if (water && !built) {
     surface_.setSettings(s.surface);
     surface_.update(f);
-    surfaceBuilt_ = true, builtWith_ = s.surface, builtParticles_ = f.particles();
+    surfaceBuilt_ = true, builtWith_ = s.surface;
     lightBuilt_ = false, surfaceOld_ = false;
-  } else if (water && kept) {
-    surfaceOld_ = true;
+  } else if (!s.same_frame) {
+    surfaceOld_ = true;  // a new frame over the surface of an older one (kept, or the water off)
   }
   // The scene's extent, for the clip planes and the sun's view.
   const Eigen::Vector3f lo(float(f.x0), heightMin_, float(f.z0));
@@ -353,7 +353,7 @@ void Renderer::render(const Frame& f, const Camera& c, const RenderSettings& s) 
     lightClipFromWorld_ = ortho(-radius, radius, -radius, radius, 0.0f, 4 * radius) * lookAt(centre + 2 * radius * sun, centre, up);
     // The maps follow the surface (and the sun): a kept surface keeps them, though the terrain
     // under them may have moved by a frame's erosion.
-    if (!lightBuilt_ || !built || litBy_ != sun || litMap_ != s.caustic_map) {
+    if (!lightBuilt_ || litBy_ != sun || litMap_ != s.caustic_map) {
       lightPass(f, s, lightClipFromWorld_);
       lightBuilt_ = true, litBy_ = sun, litMap_ = s.caustic_map;
     }

@@ -94,13 +94,12 @@ class Renderer {
   template <class Value>
   void uploadParticles(const Frame& f, Value value);
   Program terrain_, water_, lightTerrain_, lightWater_, photon_, particles_, spray_;
-  bool surfaceBuilt_ = false;  ///< for the settings and the particle count below
+  bool surfaceBuilt_ = false;  ///< with the settings below
   bool surfaceOld_ = false;   ///< the surface is of a frame before the one drawn last
   bool lightBuilt_ = false;    ///< the caustics maps are of the surface built last, in this sun
   Eigen::Vector3f litBy_ = Eigen::Vector3f::Zero();
   int litMap_ = 0;
   SurfaceSettings builtWith_;
-  size_t builtParticles_ = 0;
   GLuint emptyVao_ = 0, waterVao_ = 0, particleVao_ = 0, particleBuffer_ = 0;
   size_t particleCap_ = 0;
   GLuint heights_ = 0, change_ = 0;
