@@ -303,7 +303,8 @@ int runApp(const SceneSpec& spec, const AppOptions& o) {
   WorkerMessages messages;
   TimePlots plots;
   const double opened = glfwGetTime();
-  long frames = 0, firstStep = -1, rebuilds = 0;
+  long frames = 0, firstStep = -1, rebuilds = 0, surfaceFrames = 0, levelChanges = 0;
+  int lastLevel = state.budget.level();
   double frameStart = opened;
 
   closeRequested = 0;
@@ -330,6 +331,9 @@ int runApp(const SceneSpec& spec, const AppOptions& o) {
     const bool rebuild = state.budget.rebuild(fresh);  // the budget asks for one at first
     rebuilds += rebuild;
     RenderSettings drawn = state.budget.apply(state.settings);
+    surfaceFrames += drawn.water;
+    levelChanges += state.budget.level() != lastLevel;
+    lastLevel = state.budget.level();
     drawn.same_frame = !fresh && frames > 0;
     drawn.keep_surface = !rebuild;
     renderer.render(snap.frame, orbit->camera(), drawn);
@@ -368,6 +372,7 @@ int runApp(const SceneSpec& spec, const AppOptions& o) {
     o.stats->frames = frames, o.stats->steps = last.frame.step - std::max(firstStep, 0L);
     o.stats->seconds = glfwGetTime() - opened;
     o.stats->quality = state.budget.describe(), o.stats->rebuilds = rebuilds;
+    o.stats->surfaceFrames = surfaceFrames, o.stats->levelChanges = levelChanges;
   }
   std::cout << exitReport(last, frames, actions, errors);
   return errors == 0 ? 0 : 1;

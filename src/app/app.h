@@ -26,6 +26,8 @@ struct AppOptions {
     double seconds = 0;
     std::string quality;  ///< the water's quality at the end (RenderBudget::describe)
     long rebuilds = 0;    ///< frames that rebuilt the water surface
+    long surfaceFrames = 0;  ///< frames drawn with the water surface (kept or rebuilt)
+    long levelChanges = 0;   ///< times the quality level changed
     std::vector<double> frameSeconds;  ///< each frame, from the start of one to the next
   };
   Stats* stats = nullptr;    ///< filled on closing when set

@@ -73,6 +73,8 @@ class RenderBudget {
   /// The mean frame time when the rebuild (`b`) comes every `k` frames and the others draw (`d`).
   static double mean(double b, double d, int k) { return (b + (k - 1) * d) / k; }
   static int everyFor(double b, double d, double budget);
+  /// A frame's mean cost at `level` as last seen there, its rebuilds every every() frames; 0: never seen.
+  double frameMean(int level) const;
 
   double budget_, hitch_;
   int choice_ = -1, level_ = 0;
@@ -82,6 +84,14 @@ class RenderBudget {
   /// As last measured at each level (0: never): rebuild frames, draw-only frames; at this level,
   /// what build_ and draw_ hold.
   std::array<double, kLevels> seenBuild_{}, seenDraw_{};
+  /// Frames at the level below before a level last seen near its limits is tried again: doubled
+  /// each time the level fails soon after it was tried (the first wait is kRetryMin).
+  static constexpr int kRetryMin = 60, kRetryMax = 480;
+  std::array<int, kLevels> retry_ = [] {
+    std::array<int, kLevels> r{};
+    r.fill(kRetryMin / 2);
+    return r;
+  }();
 };
 
 }  // namespace scour

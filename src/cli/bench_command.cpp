@@ -296,6 +296,8 @@ int benchWindow(const BenchOptions& o, const Scene& scene) {
             {"frame_seconds_median", frames.empty() ? 0.0 : median(frames)}, {"frame_seconds_p95", quantile(0.95)},
             {"frame_seconds_max", frames.empty() ? 0.0 : frames.back()},
             {"surface_rebuilds_per_second", double(st.rebuilds) / st.seconds},
+            {"surface_frames_fraction", double(st.surfaceFrames) / double(std::max(st.frames, 1L))},
+            {"quality_level_changes", st.levelChanges},
             {"water_quality", st.quality}, {"ratio", windowed / std::max(alone, 1e-12)}};
   if (o.json) {
     std::cout << j.dump(2) << "\n";
@@ -303,10 +305,12 @@ int benchWindow(const BenchOptions& o, const Scene& scene) {
   }
   std::printf("engine steps per second, %s (%zu particles), %.0f s each: no window %.1f, window open %.1f "
               "(%.0f%%)\nthe %dx%d window drew %.1f frames/s (frame median %.0f ms, 95%% within %.0f ms, "
-              "longest %.0f ms), the water surface %.1f times a second; water quality %s\n",
+              "longest %.0f ms), the water surface rebuilt %.1f times a second and drawn in %.0f%% of the frames, "
+              "%ld changes of level; water quality %s\n",
               o.scene.c_str(), scene.desc.particles.size(), o.seconds, alone, windowed, 100 * windowed / alone,
               a.width, a.height, double(st.frames) / st.seconds, 1e3 * double(j["frame_seconds_median"]), 1e3 * quantile(0.95),
-              1e3 * double(j["frame_seconds_max"]), double(st.rebuilds) / st.seconds, st.quality.c_str());
+              1e3 * double(j["frame_seconds_max"]), double(st.rebuilds) / st.seconds,
+              100 * double(j["surface_frames_fraction"]), st.levelChanges, st.quality.c_str());
   return kExitOk;
 }
 

@@ -1,7 +1,8 @@
 // The window's render budget without a window: frames over the budget take the quality down
 // (far over it, several levels at once), a surface rebuild too slow for every frame comes every
 // few frames with the frames in between drawn from the last surface, frames with room bring the
-// quality back up without see-sawing, and a level the user pins stays whatever the frame times.
+// quality back up without see-sawing, a level at the budget or slow for reasons other than the
+// water keeps the surface, and a level the user pins stays whatever the frame times.
 #include <catch2/catch.hpp>
 
 #include <algorithm>
@@ -129,4 +130,49 @@ TEST_CASE("render budget: a pinned level stays; particles only draws the particl
   b.choose(-1);  // back to automatic
   for (int frame = 0; frame < 10; ++frame) b.measured(0.001);
   CHECK(b.choice() == -1);
+}
+
+TEST_CASE("render budget: a level whose frames sit at the budget keeps the surface", "[app][budget]") {
+  RenderBudget b(0.04, 0.1);
+  // Every level above grid 3 Δs at half resolution costs 0.5 s; that level rebuilds and draws in
+  // 38–45 ms, noisily (lake --scale 0.3 on llvmpipe, panels and swap included), the particles 4 ms.
+  const int half = RenderBudget::kLevels - 2;
+  unsigned noise = 1;
+  std::vector<int> levels;
+  for (int f = 0; f < 3000; ++f) {
+    const bool r = b.rebuild(true);
+    (void)r;
+    noise = noise * 1103515245u + 12345u;
+    const double jitter = 0.038 + 0.007 * double((noise >> 16) % 1000) / 999.0;
+    const int level = b.level();
+    b.measured(level < half ? 0.5 : level == half ? jitter : 0.004);
+    levels.push_back(level);
+  }
+  // Down to that level within a few frames a level, and there for good: no switching to the particles.
+  const auto first = std::find(levels.begin(), levels.end(), half);
+  REQUIRE(first - levels.begin() < 60);
+  CHECK(std::all_of(first, levels.end(), [&](int l) { return l == half; }));
+  CHECK(b.apply(RenderSettings{}).water);
+  // Frames clearly over the budget (50 ms, 20 a second) still take it down.
+  for (int f = 0; f < 10; ++f) b.rebuild(true), b.measured(0.05);
+  CHECK(b.level() == RenderBudget::kLevels - 1);
+}
+
+TEST_CASE("render budget: frames slow for reasons other than the water keep the surface",
+          "[app][budget]") {
+  RenderBudget b(0.04, 0.1);
+  // The panels, the swap and the engine cost 48 ms a frame whatever the water (over the budget
+  // even with the particles alone); the surface adds 2 ms at grid 3 Δs, half resolution; the
+  // finer levels rebuild in 120 ms, a hitch.
+  const int half = RenderBudget::kLevels - 2;
+  auto cost = [&](int level) { return level < half ? 0.12 : level == half ? 0.050 : 0.048; };
+  std::vector<int> levels;
+  for (int f = 0; f < 2000; ++f) {
+    b.rebuild(true);
+    levels.push_back(b.level());
+    b.measured(cost(b.level()));
+  }
+  // It tries the particles once, finds them no cheaper, and goes back to the surface for good.
+  CHECK(b.level() == half);
+  CHECK(std::count(levels.end() - 1000, levels.end(), half) == 1000);
 }

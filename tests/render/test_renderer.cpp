@@ -1,6 +1,8 @@
 // Pictures of a small pool, headless on llvmpipe: no GL error; water-coloured pixels where the
 // water is and none on the dry side; every water effect changes the picture when toggled; EGL
-// and OSMesa draw the same picture.
+// and OSMesa draw the same picture; spray shows the water the surface does not cover; a kept
+// surface (the window between two rebuilds) is drawn as built, the new frame's particles that
+// left it as spray.
 #include <catch2/catch.hpp>
 
 #include "render/context.h"
@@ -182,4 +184,59 @@ TEST_CASE("spray: water the surface does not cover is drawn as sprites", "[rende
     for (int x = column(0.6f); x < kW; ++x)
       for (int k = 0; k < 3; ++k) dryDiff += a[size_t(4 * (y * kW + x) + k)] != b[size_t(4 * (y * kW + x) + k)];
   CHECK(dryDiff == 0);
+}
+
+TEST_CASE("a kept surface: the old triangles drawn, the new frame's particles outside them as spray",
+          "[render][picture]") {
+  auto gl = createGlContext(GlBackend::kEgl);
+  const Frame before = pool();
+  // The next frame: all the water moved half a metre along x, onto the side that was dry.
+  Frame after = before;
+  for (auto& p : after.position) p.x() += 0.5f;
+  RenderSettings s;
+  s.terrain = RenderSettings::Terrain::kShaded;
+  // A renderer that built the surface of `before`, then draws `after` keeping it.
+  auto kept = [&](bool spray, Eigen::Vector3f* origin) {
+    Renderer r(kW, kH);
+    r.render(before, topDown(), s);
+    while (r.surface().growIfOverflowed()) r.render(before, topDown(), s);
+    const Eigen::Vector3f built = r.surface().grid().origin;
+    RenderSettings k = s;
+    k.keep_surface = true;
+    k.spray = spray;
+    r.render(after, topDown(), k);
+    CHECK(r.surface().grid().origin == built);  // not built again
+    if (origin) *origin = built;
+    auto img = r.readPixels();
+    CHECK(gl->errors() == 0);
+    return img;
+  };
+  Eigen::Vector3f keptOrigin;
+  const auto withSpray = kept(true, &keptOrigin);
+  const auto noSpray = kept(false, nullptr);
+  RenderSettings dry = s;
+  dry.water = false;
+  const auto bare = picture(*gl, after, dry);
+  const auto fresh = picture(*gl, after, s);
+  long oldWet = 0, freshWet = 0, total = 0;
+  for (int y = kH / 4; y < 3 * kH / 4; ++y)
+    for (int x = column(0.12f); x <= column(0.33f); ++x)
+      oldWet += watery(withSpray, bare, x, y), freshWet += watery(fresh, bare, x, y), ++total;
+  INFO("old pool pixels: " << total << ", water kept on " << oldWet << ", on a rebuilt surface " << freshWet);
+  CHECK(total > 200);
+  CHECK(oldWet > 0.95 * double(total));  // the old triangles, where the water was
+  CHECK(freshWet == 0);                  // a rebuilt surface has left it
+  // Where the water went, the kept surface has no triangles: the particles show as sprites, and
+  // without spray that side is drawn as if dry.
+  long sprites = 0, noSprayOff = 0, cells = 0;
+  for (int y = kH / 4; y < 3 * kH / 4; ++y)
+    for (int x = column(0.62f); x <= column(0.83f); ++x) {
+      const size_t i = size_t(4 * (y * kW + x));
+      bool a = false, b = false;
+      for (int k = 0; k < 3; ++k) a |= withSpray[i + size_t(k)] != bare[i + size_t(k)], b |= noSpray[i + size_t(k)] != bare[i + size_t(k)];
+      sprites += a, noSprayOff += b, ++cells;
+    }
+  INFO("new water pixels: " << cells << ", drawn as sprites " << sprites << ", changed without spray " << noSprayOff);
+  CHECK(sprites > 0.5 * double(cells));
+  CHECK(noSprayOff == 0);
 }
