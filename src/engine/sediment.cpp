@@ -323,6 +323,8 @@ std::vector<int> applyTerrainChange(Heightfield& hf, const std::vector<double>& 
   std::vector<int> tris = acc.touched;
   std::sort(tris.begin(), tris.end());
   std::vector<int> moved;
+  if (acc.mark.size() != acc.volume.size()) acc.mark.assign(acc.volume.size(), 0u), acc.epoch = 0;
+  if (++acc.epoch == 0) std::fill(acc.mark.begin(), acc.mark.end(), 0u), acc.epoch = 1;
   for (int t : tris) {
     depositOnTriangle(hf, areas, t, acc.volume[size_t(t)]);
     acc.volume[size_t(t)] = 0.0;
@@ -330,11 +332,12 @@ std::vector<int> applyTerrainChange(Heightfield& hf, const std::vector<double>& 
     const int cells = hf.nx() - 1, cell = t / 2, ci = cell % cells, ck = cell / cells;
     for (int k = std::max(ck - 1, 0); k <= std::min(ck + 1, hf.nz() - 2); ++k)
       for (int i = std::max(ci - 1, 0); i <= std::min(ci + 1, cells - 1); ++i)
-        for (int s = 0; s < 2; ++s) moved.push_back(2 * (k * cells + i) + s);
+        for (int s = 0; s < 2; ++s) {
+          const int m = 2 * (k * cells + i) + s;
+          if (acc.mark[size_t(m)] != acc.epoch) acc.mark[size_t(m)] = acc.epoch, moved.push_back(m);
+        }
   }
   acc.touched.clear();
-  std::sort(moved.begin(), moved.end());
-  moved.erase(std::unique(moved.begin(), moved.end()), moved.end());
   return moved;
 }
 

@@ -64,7 +64,10 @@ struct SedimentConstants {
 struct TerrainAccumulator {
   std::vector<double> volume;   ///< per triangle
   std::vector<int> touched;     ///< triangles with a non-zero entry, in first-touch order
-  void resize(int triangles) { volume.assign(size_t(triangles), 0.0); }
+  /// applyTerrainChange's marks of the triangles it has listed as moved (== epoch: this step).
+  std::vector<uint32_t> mark;
+  uint32_t epoch = 0;
+  void resize(int triangles) { volume.assign(size_t(triangles), 0.0), mark.assign(size_t(triangles), 0u), epoch = 0; }
   void add(int tri, double v) {
     if (volume[size_t(tri)] == 0.0) touched.push_back(tri);
     volume[size_t(tri)] += v;
@@ -116,7 +119,9 @@ double terrainVolume(const Heightfield& hf, const std::vector<double>& areas, do
 void depositOnTriangle(Heightfield& hf, const std::vector<double>& areas, int tri, double volume);
 
 /// Step 3: applies and clears the accumulator, in ascending triangle order. Returns the triangles
-/// whose surface moved (those sharing a changed vertex), sorted.
+/// whose surface moved (those sharing a changed vertex), each once, in an order that depends on
+/// the touched triangles alone (not sorted: a sort of the nine cells around each touched one was
+/// a fifth of a step on a terrain finer than Δs).
 std::vector<int> applyTerrainChange(Heightfield& hf, const std::vector<double>& areas,
                                     TerrainAccumulator& acc);
 

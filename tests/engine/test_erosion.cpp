@@ -126,7 +126,11 @@ TEST_CASE("applyTerrainChange applies every triangle and reports the moved ones"
   acc.add(40, 5e-4);
   auto moved = applyTerrainChange(hf, areas, acc);
   CHECK(terrainVolume(hf, areas, 0.0) == Approx(1.5e-3 - 2e-4).epsilon(1e-12));
-  CHECK(std::is_sorted(moved.begin(), moved.end()));
+  std::vector<int> once = moved;
+  std::sort(once.begin(), once.end());
+  CHECK(std::adjacent_find(once.begin(), once.end()) == once.end());  // each once
+  // The cells around cells 1 and 20 (of 9 × 9): 6 + 9, 2 of them shared; 2 triangles each.
+  CHECK(moved.size() == 26);
   CHECK(std::find(moved.begin(), moved.end(), 40) != moved.end());
   CHECK(std::find(moved.begin(), moved.end(), 3) != moved.end());
   CHECK(acc.touched.empty());
