@@ -42,6 +42,9 @@ struct BenchOptions {
   bool render = false;
   bool paper = false;
   bool withWindow = false;
+  bool presets = false;
+  std::vector<double> scales{0.1, 0.3, 1.0};
+  int repeat = 1;
   double seconds = 5;
   std::string size;  ///< empty: 960x540 for --render, the window's 1280x720 for --with-window
   std::vector<std::string> sets;
@@ -314,25 +317,14 @@ int benchWindow(const BenchOptions& o, const Scene& scene) {
   return kExitOk;
 }
 
-int bench(const BenchOptions& o) {
-  setThreads(o.threads);
-  if (o.paper) return benchPaper(o);
-  if (o.withWindow) return benchWindow(o, loadScene(o.scene, o.scale, o.particles, o.sets));
-  Scene scene = loadScene(o.scene, o.scale, o.particles, o.sets);
-  if (o.ablation) return ablation(o, scene);
-  if (o.render) return benchRender(o, scene);
-  if (o.erosion) {
-    // Every sediment pass at full work: all effects on, and every particle already carrying
-    // sediment (so no pair is skipped as empty).
-    Effects& e = scene.desc.effects;
-    e.erosion = e.settling = e.diffusion = e.deposition = true;
-    scene.desc.concentration.assign(scene.desc.particles.size(), 0.01);
-  }
+// One scene's step: the median seconds of each pass and Table 1 group over o.steps steps after
+// o.warmup, the speed per core and the memory per particle. On a failed step: *code, and null.
+json measureSteps(const BenchOptions& o, const std::string& name, const Scene& scene, int* code) {
   std::unique_ptr<World> world;
   try {
     world = std::make_unique<World>(scene.desc);
   } catch (const std::invalid_argument& e) {
-    throw InputError(std::string("scene '") + o.scene + "': " + e.what());
+    throw InputError(std::string("scene '") + name + "': " + e.what());
   }
   const int threads = omp_get_max_threads();
   constexpr size_t kPasses = size_t(Pass::kCount);
@@ -347,13 +339,19 @@ int bench(const BenchOptions& o) {
       for (int k = 0; k < 4; ++k) groups[k].push_back(r.groupSeconds[size_t(k)]);
       particles += world->fluid().size();
     });
-  if (!end.ok()) return stepFailure(end);
+  if (!end.ok()) {
+    *code = stepFailure(end, name);
+    return {};
+  }
   const double meanParticles = double(particles) / double(o.steps);
   const double tTotal = median(total);
   const double tSph = median(groups[int(Table1Group::kSph)]);
   json j;
-  j["scene"] = o.scene;
+  j["scene"] = name;
   j["particles"] = long(meanParticles + 0.5);
+  j["spacing"] = scene.desc.params.spacing;  // Δs
+  j["terrain_cell"] = std::max(scene.desc.terrain.dx(), scene.desc.terrain.dz());
+  j["boundary_particles"] = world->boundary().size();
   j["erosion_effects"] = o.erosion || scene.desc.effects.erosion;
   j["threads"] = threads;
   j["steps"] = o.steps;
@@ -369,12 +367,94 @@ int bench(const BenchOptions& o) {
   j["memory_bytes_per_particle"] = double(world->memoryBytes()) / meanParticles;
   j["neighbors_per_particle"] =
       double(world->neighbors().totalPairs()) / double(std::max<size_t>(1, world->fluid().size()));
+  j["ratio"] = (double(j["table1"]["erosion"]) + double(j["table1"]["boundary"])) / std::max(tSph, 1e-300);
+  return j;
+}
+
+// The paper's three presets at the scales users run (the window: 0.1–0.3), each measured
+// `repeat` times in turn (scene after scene, so the machine's drift hits all alike); each figure
+// is the median over the repeats of the per-run medians.
+int benchPresets(const BenchOptions& o) {
+  const int threads = omp_get_max_threads();
+  const char* const names[] = {"canyon", "lake", "waterfall"};
+  struct Cell {
+    std::string name;
+    double scale;
+    std::vector<json> runs;
+  };
+  std::vector<Cell> cells;
+  for (const char* n : names)
+    for (double sc : o.scales) cells.push_back({n, sc, {}});
+  for (int r = 0; r < o.repeat; ++r)
+    for (Cell& c : cells) {
+      const Scene scene = loadScene(c.name, c.scale, 0, o.sets);
+      int code = kExitOk;
+      json j = measureSteps(o, c.name, scene, &code);
+      if (j.is_null()) return code;
+      c.runs.push_back(std::move(j));
+    }
+  auto med = [](const Cell& c, auto get) {
+    std::vector<double> v;
+    for (const json& j : c.runs) v.push_back(get(j));
+    return median(v);
+  };
+  json rows = json::array();
+  for (const Cell& c : cells) {
+    json row = {{"scene", c.name}, {"scale", c.scale}, {"runs", c.runs.size()},
+                {"particles", c.runs.front()["particles"]}};
+    for (const char* g : {"sph", "erosion", "boundary"})
+      row[std::string(g) + "_s"] = med(c, [&](const json& j) { return double(j["table1"][g]); });
+    row["step_s"] = med(c, [](const json& j) { return double(j["seconds_per_step"]["total"]); });
+    row["ratio"] = med(c, [](const json& j) { return double(j["ratio"]); });
+    row["particle_steps_per_second_per_core"] =
+        med(c, [](const json& j) { return double(j["particle_steps_per_second_per_core"]); });
+    row["sph_particle_steps_per_second_per_core"] =
+        med(c, [](const json& j) { return double(j["sph_particle_steps_per_second_per_core"]); });
+    row["memory_bytes_per_particle"] = med(c, [](const json& j) { return double(j["memory_bytes_per_particle"]); });
+    rows.push_back(row);
+  }
+  if (o.json) {
+    std::cout << json{{"threads", threads}, {"steps", o.steps}, {"warmup", o.warmup}, {"repeat", o.repeat},
+                      {"rows", rows}}.dump(2) << "\n";
+    return kExitOk;
+  }
+  std::printf("presets: median seconds per step over %ld steps (after %ld warm-up), %d threads, "
+              "median of %d run(s)\n", o.steps, o.warmup, threads, o.repeat);
+  std::printf("%-10s %5s %9s | %9s %9s %9s | %11s | %12s %12s | %9s\n", "scene", "scale", "particles", "SPH s",
+              "erosion s", "boundary s", "(er+bd)/SPH", "p-steps/s/c", "SPH alone", "bytes/p");
+  for (const json& r : rows)
+    std::printf("%-10s %5.2f %9ld | %9.5f %9.5f %9.5f | %10.0f%% | %12.0f %12.0f | %9.0f\n",
+                std::string(r["scene"]).c_str(), double(r["scale"]), long(r["particles"]), double(r["sph_s"]),
+                double(r["erosion_s"]), double(r["boundary_s"]), 100 * double(r["ratio"]),
+                double(r["particle_steps_per_second_per_core"]), double(r["sph_particle_steps_per_second_per_core"]),
+                double(r["memory_bytes_per_particle"]));
+  return kExitOk;
+}
+
+int bench(const BenchOptions& o) {
+  setThreads(o.threads);
+  if (o.paper) return benchPaper(o);
+  if (o.presets) return benchPresets(o);
+  if (o.withWindow) return benchWindow(o, loadScene(o.scene, o.scale, o.particles, o.sets));
+  Scene scene = loadScene(o.scene, o.scale, o.particles, o.sets);
+  if (o.ablation) return ablation(o, scene);
+  if (o.render) return benchRender(o, scene);
+  if (o.erosion) {
+    // Every sediment pass at full work: all effects on, and every particle already carrying
+    // sediment (so no pair is skipped as empty).
+    Effects& e = scene.desc.effects;
+    e.erosion = e.settling = e.diffusion = e.deposition = true;
+    scene.desc.concentration.assign(scene.desc.particles.size(), 0.01);
+  }
+  int code = kExitOk;
+  const json j = measureSteps(o, o.scene, scene, &code);
+  if (j.is_null()) return code;
   if (o.json) {
     std::cout << j.dump(2) << "\n";
     return kExitOk;
   }
   std::printf("scene %s: %ld particles, %d threads, %ld steps (median seconds per step)\n",
-              o.scene.c_str(), long(meanParticles + 0.5), threads, o.steps);
+              o.scene.c_str(), long(j["particles"]), int(j["threads"]), o.steps);
   for (auto& [k, v] : j["seconds_per_step"].items()) std::printf("  %-22s %10.6f\n", k.c_str(), double(v));
   std::printf("Table 1 groups: SPH %.6f  erosion %.6f  boundary %.6f  ((erosion + boundary) / SPH = %.0f%%)\n",
               double(j["table1"]["sph"]), double(j["table1"]["erosion"]),
@@ -413,6 +493,11 @@ Command addBenchCommand(CLI::App& app) {
   c->add_option("--seconds", o->seconds, "How long each --with-window phase runs (default 5)")->check(kPositive);
   c->add_flag("--paper", o->paper,
               "The paper's Table 1 beside ours: canyon, lake and waterfall at the paper's counts");
+  c->add_flag("--presets", o->presets,
+              "canyon, lake and waterfall at each of --scales: the Table 1 groups, their ratio, speed per core, memory");
+  c->add_option("--scales", o->scales, "Scales for --presets (default 0.1 0.3 1)")->check(kPositive)->delimiter(',');
+  c->add_option("--repeat", o->repeat, "Runs of each --presets scene, in turn; the medians are reported")
+      ->check(kPositive);
   c->add_flag("--ablation", o->ablation,
               "Compare all effects, erosion off and SPH only, stepped in turn");
   return [o] { return bench(*o); };

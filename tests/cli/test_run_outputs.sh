@@ -135,3 +135,17 @@ for r in d['rows']:
     assert all(math.isfinite(o[k]) and o[k] >= 0 for k in ('sph_s', 'erosion_s', 'boundary_s')), r
 print('bench --paper: ' + ', '.join('%s %d particles %.3f s/step' % (r['scene'], r['ours']['particles'], r['ours']['step_s']) for r in d['rows']))
 "
+# bench --presets: the three presets at each scale asked for, every figure finite and positive,
+# the particle count following the scale, the median over the repeats.
+"$scour" bench --presets --scales 0.1,0.3 --repeat 2 --steps 1 --warmup 0 --threads 1 --json | python3 -c "
+import json, math, sys
+d = json.load(sys.stdin)
+rows = d['rows']
+assert [(r['scene'], r['scale']) for r in rows] == [(n, s) for n in ('canyon', 'lake', 'waterfall') for s in (0.1, 0.3)], rows
+for r in rows:
+    assert r['runs'] == 2, r
+    assert all(math.isfinite(r[k]) and r[k] > 0 for k in ('sph_s', 'step_s', 'particle_steps_per_second_per_core', 'memory_bytes_per_particle')), r
+for a, b in zip(rows[0::2], rows[1::2]):
+    assert 2 < b['particles'] / a['particles'] < 4.5, (a, b)
+print('bench --presets: ' + ', '.join('%s %.1f: %d particles, ratio %.0f%%' % (r['scene'], r['scale'], r['particles'], 100 * r['ratio']) for r in rows))
+"
