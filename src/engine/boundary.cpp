@@ -7,8 +7,9 @@
 
 namespace scour {
 
-BoundarySampler::BoundarySampler(const Heightfield& hf, double spacing)
+BoundarySampler::BoundarySampler(const Heightfield& hf, double spacing, BoundarySampling sampling)
     : spacing_(spacing),
+      block_(sampling == BoundarySampling::kSpacing ? blockCells(hf, spacing) : 0),
       tilesX_((hf.nx() - 2) / kTileCells + 1),
       tilesZ_((hf.nz() - 2) / kTileCells + 1),
       mark_(size_t(tilesX_) * tilesZ_, 0) {}
@@ -34,18 +35,63 @@ bool BoundarySampler::updateActiveTiles(const Heightfield& hf, const std::vector
   return changed;
 }
 
+int BoundarySampler::blockCells(const Heightfield& hf, double spacing) {
+  const double r = spacing / std::max(hf.dx(), hf.dz());
+  // Two particles per cell (one per triangle) against one per block: whichever density is nearer
+  // one per Δs² (equally far, in ratio, at Δs / cell = 2^(−1/4)).
+  if (r <= std::pow(2.0, -0.25)) return 0;
+  return int(std::clamp(std::lround(r), 1L, long(kTileCells)));
+}
+
 void BoundarySampler::generate(const Heightfield& hf, BoundaryParticles& out) const {
-  out.x.clear();
-  out.triangle.clear();
-  out.area.clear();
-  out.bary.clear();
+  out.clear();
   const int cellsX = hf.nx() - 1, cellsZ = hf.nz() - 1;
+  out.cellsX = cellsX;
   for (int t : active_) {
     int ti = t % tilesX_, tk = t / tilesX_;
-    for (int k = tk * kTileCells; k < std::min(cellsZ, (tk + 1) * kTileCells); ++k)
-      for (int i = ti * kTileCells; i < std::min(cellsX, (ti + 1) * kTileCells); ++i)
-        for (int s = 0; s < 2; ++s) sampleTriangle(hf, 2 * (k * cellsX + i) + s, spacing_, out);
+    const int iEnd = std::min(cellsX, (ti + 1) * kTileCells), kEnd = std::min(cellsZ, (tk + 1) * kTileCells);
+    if (block_ == 0) {
+      for (int k = tk * kTileCells; k < kEnd; ++k)
+        for (int i = ti * kTileCells; i < iEnd; ++i)
+          for (int s = 0; s < 2; ++s) sampleTriangle(hf, 2 * (k * cellsX + i) + s, spacing_, out);
+      continue;
+    }
+    for (int k = tk * kTileCells; k < kEnd; k += block_)
+      for (int i = ti * kTileCells; i < iEnd; i += block_)
+        sampleBlock(hf, i, k, std::min(block_, iEnd - i), std::min(block_, kEnd - k), spacing_, out);
   }
+}
+
+void BoundarySampler::sampleBlock(const Heightfield& hf, int i0, int k0, int bx, int bz, double spacing,
+                                  BoundaryParticles& out) {
+  const int cellsX = hf.nx() - 1;
+  double area3d = 0;
+  for (int k = k0; k < k0 + bz; ++k)
+    for (int i = i0; i < i0 + bx; ++i)
+      for (int s = 0; s < 2; ++s) {
+        auto c = hf.triangleCorners(2 * (k * cellsX + i) + s);
+        area3d += 0.5 * (c[1] - c[0]).cross(c[2] - c[0]).norm();
+      }
+  if (std::lround(std::sqrt(area3d) / spacing) >= 2) {
+    for (int k = k0; k < k0 + bz; ++k)
+      for (int i = i0; i < i0 + bx; ++i)
+        for (int s = 0; s < 2; ++s) sampleTriangle(hf, 2 * (k * cellsX + i) + s, spacing, out);
+    return;
+  }
+  const double xc = hf.x0() + (i0 + 0.5 * bx) * hf.dx(), zc = hf.z0() + (k0 + 0.5 * bz) * hf.dz();
+  const int tri = hf.surface(xc, zc).triangle;
+  auto c = hf.triangleCorners(tri);
+  // (u, w) of the centre in the triangle, in x–z; the height as follow() computes it.
+  const Eigen::Vector3d ab = c[1] - c[0], ac = c[2] - c[0];
+  const double det = ab.x() * ac.z() - ab.z() * ac.x();
+  const double px = xc - c[0].x(), pz = zc - c[0].z();
+  const float u = float((px * ac.z() - pz * ac.x()) / det), w = float((ab.x() * pz - ab.z() * px) / det);
+  out.x.emplace_back(float(xc), float(c[0].y() + u * ab.y() + w * ac.y()), float(zc));
+  out.triangle.push_back(tri);
+  out.area.push_back(bx * hf.dx() * bz * hf.dz());
+  out.bary.emplace_back(u, w);
+  out.patch.push_back(k0 * cellsX + i0);
+  out.extent.push_back(uint8_t(bx | bz << 4));
 }
 
 void BoundarySampler::follow(const Heightfield& hf, const std::vector<int>& triangles,
@@ -79,6 +125,8 @@ void BoundarySampler::sampleTriangle(const Heightfield& hf, int tri, double spac
     out.triangle.push_back(tri);
     out.area.push_back(each);
     out.bary.emplace_back(float(u / n), float(w / n));
+    out.patch.push_back(-1);
+    out.extent.push_back(0);
   };
   // Row j of the scanline walk: the upward sub-triangles, then the downward ones between them.
   for (int j = 0; j < n; ++j) {

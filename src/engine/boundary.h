@@ -1,8 +1,18 @@
 #pragma once
-// Boundary particles on the terrain (paper §3.2). Each heightfield triangle is covered by n² equal
-// sub-triangles (n = round(√area / Δs), at least 1) walked row by row like a scanline; one boundary particle
-// sits at each sub-triangle's centroid and stands for its area, so the particles of a triangle
-// carry exactly its area (L_b² summed = triangle area), which the erosion budget relies on.
+// Boundary particles on the terrain (paper §3.2), about one per Δs² of terrain whatever the
+// terrain's cell (docs/model.md, "boundary particles at the fluid's spacing"):
+//  - a cell as coarse as Δs or coarser (Δs / cell ≤ 2^(−1/4), where two particles per cell are
+//    closer to one per Δs² than one per cell is): each of its triangles is covered by n² equal
+//    sub-triangles (n = round(√area / Δs), at least 1) walked row by row like a scanline; one
+//    particle sits at each sub-triangle's centroid and stands for its area, so the particles of a
+//    triangle carry exactly its area (L_b² summed = triangle area);
+//  - a finer terrain, with engine.boundary_sampling=spacing (the default, `triangles`, samples
+//    every terrain as above): the cells are grouped into blocks of b × b (b = round(Δs / cell), at most a
+//    tile; clipped at the tile's edge), and one particle at the block's centre, on the terrain,
+//    stands for the block's area; what it exchanges with the water is spread over the block's
+//    triangles in equal parts (their projected areas are equal), so the soil budget stays exact
+//    to rounding and the terrain keeps its finer detail. A block too steep for one particle
+//    (round(√(3D area) / Δs) ≥ 2) is sampled triangle by triangle as above.
 //
 // Sparse by design: the terrain is cut into square tiles of kTileCells × kTileCells cells, and
 // particles exist only for tiles that fluid is near. The paper spent half its step on the
@@ -13,6 +23,7 @@
 #include <vector>
 
 #include "engine/heightfield.h"
+#include "engine/params.h"
 
 namespace scour {
 
@@ -23,14 +34,34 @@ struct BoundaryParticles {
   std::vector<int> triangle; ///< heightfield triangle id
   std::vector<double> area;  ///< L_b², area the particle stands for [m²]
   std::vector<Eigen::Vector2f> bary;  ///< (u, w): x = c0 + u (c1 − c0) + w (c2 − c0)
+  /// −1: the particle stands for part of `triangle`; else for the block of cells whose first
+  /// cell (k·(nx − 1) + i) this is, `extent` cells along x (low 4 bits) and z (high 4 bits), and
+  /// `triangle` is the one under its centre (which it follows).
+  std::vector<int> patch;
+  std::vector<uint8_t> extent;
+  int cellsX = 0;  ///< the terrain's cells along x
   size_t size() const { return x.size(); }
+  void clear() { x.clear(), triangle.clear(), area.clear(), bary.clear(), patch.clear(), extent.clear(); }
+  /// Calls add(triangle, volume) for the triangles particle j stands for, `v` shared by area.
+  template <class Add>
+  void spread(size_t j, double v, Add&& add) const {
+    if (patch[j] < 0) return add(triangle[j], v);
+    const int bx = extent[j] & 15, bz = extent[j] >> 4;
+    const double part = v / (2.0 * bx * bz);
+    for (int k = 0; k < bz; ++k)
+      for (int i = 0; i < bx; ++i) {
+        const int cell = patch[j] + k * cellsX + i;
+        add(2 * cell, part), add(2 * cell + 1, part);
+      }
+  }
 };
 
 class BoundarySampler {
  public:
   static constexpr int kTileCells = 8;
 
-  explicit BoundarySampler(const Heightfield& hf, double spacing);
+  BoundarySampler(const Heightfield& hf, double spacing,
+                  BoundarySampling sampling = BoundarySampling::kTriangles);
 
   /// Marks the tiles within `reach` (horizontally) of any fluid particle that is within `reach`
   /// above the terrain. Returns true if the set of active tiles changed.
@@ -41,6 +72,14 @@ class BoundarySampler {
   static void follow(const Heightfield& hf, const std::vector<int>& triangles, BoundaryParticles& b);
   /// Appends the particles of one triangle.
   static void sampleTriangle(const Heightfield& hf, int tri, double spacing, BoundaryParticles& out);
+  /// Appends the particles of the block of bx × bz cells from cell (i0, k0): one, or those of its
+  /// triangles when it is too steep for one.
+  static void sampleBlock(const Heightfield& hf, int i0, int k0, int bx, int bz, double spacing,
+                          BoundaryParticles& out);
+  /// The block's side in cells for a terrain and Δs (engine.boundary_sampling=spacing); 0: each
+  /// triangle is sampled on its own.
+  static int blockCells(const Heightfield& hf, double spacing);
+  int block() const { return block_; }
 
   const std::vector<int>& activeTiles() const { return active_; }
   /// Sets the active tiles (a restored checkpoint's); ids must be valid and ascending.
@@ -49,6 +88,7 @@ class BoundarySampler {
 
  private:
   double spacing_;
+  int block_;
   int tilesX_, tilesZ_;
   std::vector<int> active_;
   std::vector<uint8_t> mark_;

@@ -16,6 +16,7 @@ namespace {
 const char* const kEosChoices[] = {"tait", "ideal_gas", nullptr};
 const char* const kDensityChoices[] = {"continuity", "summation", nullptr};
 const char* const kNeighborChoices[] = {"grid", "kd_tree", nullptr};
+const char* const kSamplingChoices[] = {"triangles", "spacing", nullptr};
 const char* const kAdvectionChoices[] = {"donor_acceptor", "naive_gradient", nullptr};
 const char* const kDiffusionFormChoices[] = {"consistent", "printed", nullptr};
 
@@ -162,6 +163,11 @@ std::vector<ParamInfo> makeTable() {
           "grid: uniform cells of edge h; kd_tree: nanoflann kd-tree rebuilt every step (the "
           "paper's). Same neighbor sets.",
           kNeighborChoices),
+      choice<&P::boundary_sampling>(
+          "engine.boundary_sampling", "Boundary sampling",
+          "triangles: n² boundary particles per terrain triangle, at least one; spacing: about one "
+          "per Δs² on a terrain finer than Δs, each for a block of cells (model.md).",
+          kSamplingChoices),
       slider(real("engine.max_penetration_over_ds", "Penetration limit", "", "Δs", 0.0, 100.0,
                   "A particle deeper than this below the terrain stops the run.",
                   &P::max_penetration_over_ds),

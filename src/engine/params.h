@@ -17,6 +17,7 @@ namespace scour {
 enum class EquationOfState { kTait, kIdealGas };                  // fluid.eos: tait, ideal_gas
 enum class DensityMethod { kContinuity, kSummation };             // fluid.density
 enum class NeighborSearch { kGrid, kKdTree };                     // engine.neighbor_search
+enum class BoundarySampling { kTriangles, kSpacing };             // engine.boundary_sampling
 enum class SettlingAdvection { kDonorAcceptor, kNaiveGradient };  // sediment.advection
 enum class DiffusionForm { kConsistent, kPrinted };               // sediment.diffusion_form
 
@@ -102,6 +103,10 @@ struct SimParams {
   /// Neighbor search: a uniform grid (default), or a kd-tree rebuilt every step (nanoflann; the
   /// paper's choice). Both find the same neighbor sets; the kd-tree lists are in ascending index.
   NeighborSearch neighbor_search = NeighborSearch::kGrid;
+  /// Boundary particles: n² per terrain triangle (default; at least one, so a terrain finer than
+  /// Δs carries several per Δs²), or about one per Δs² on a terrain finer than Δs, each standing
+  /// for a block of cells (docs/model.md, "boundary particles at the fluid's spacing").
+  BoundarySampling boundary_sampling = BoundarySampling::kTriangles;
   /// A particle deeper than this below the terrain stops the run [Δs].
   double max_penetration_over_ds = 0.5;
 

@@ -94,13 +94,14 @@ double depositFlux(const SedimentConstants& k, double cd, double dy, double r) {
   return 2.0 * k.volume * k.volume * cd * k.vs0 * (dy / r) * (-k.spline.F(r));
 }
 
-// Per-thread lists of (triangle, volume) for contiguous particle blocks; replayed in thread order
-// they are in particle order, whatever the thread count.
-using TriangleVolumes = std::vector<std::vector<std::pair<int, double>>>;
+// Per-thread lists of (boundary particle, volume) for contiguous particle blocks; replayed in
+// thread order they are in particle order, whatever the thread count. Each volume goes to the
+// triangles its boundary particle stands for.
+using TriangleVolumes = std::vector<std::vector<std::pair<uint32_t, double>>>;
 
-void replay(const TriangleVolumes& lists, TerrainAccumulator& acc) {
+void replay(const TriangleVolumes& lists, const BoundaryParticles& b, TerrainAccumulator& acc) {
   for (const auto& l : lists)
-    for (auto [tri, v] : l) acc.add(tri, v);
+    for (auto [j, v] : l) b.spread(j, v, [&](int tri, double part) { acc.add(tri, part); });
 }
 
 }  // namespace
@@ -189,7 +190,7 @@ void transferSediment(const SedimentConstants& k, const SedimentEffects& fx,
             const double given = scaled ? v * scale[i].out : v;
             d -= given;
             out += v;
-            mine.emplace_back(b.triangle[bj], given);
+            mine.emplace_back(bj, given);
           });
         }
         delta[i] = d;
@@ -202,7 +203,7 @@ void transferSediment(const SedimentConstants& k, const SedimentEffects& fx,
   };
   exchange(false);
   if (limited) exchange(true);
-  replay(deposits, acc);
+  replay(deposits, b, acc);
   ws.defects = {};
   if (naive) {
     // The naive rate leaks: count what the step made (suspended change + deposits) and what the
@@ -255,7 +256,7 @@ void erode(const SedimentConstants& k, const NeighborLists& bnbrs, const Boundar
       forEachNeighbor(bnbrs, f.x, b.x, i, [&](uint32_t bj, const Vec3f&, float r) {
         const double v = pairVolume(speed, double(r), b.area[bj]);
         if (v <= 0.0) return;
-        mine.emplace_back(b.triangle[bj], -v);
+        mine.emplace_back(bj, -v);
         total += v;
       });
       if (total <= 0.0) continue;
@@ -270,7 +271,7 @@ void erode(const SedimentConstants& k, const NeighborLists& bnbrs, const Boundar
       f.sed[i] += gained;
     }
   }
-  replay(eroded, acc);
+  replay(eroded, b, acc);
 }
 
 std::vector<double> vertexAreas(const Heightfield& hf) {

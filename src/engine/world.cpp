@@ -93,7 +93,7 @@ World::World(WorldDesc d)
       terrain_(std::move(d.terrain)),
       domain_(d.domain),
       effects_(d.effects),
-      sampler_(terrain_, params_.spacing) {
+      sampler_(terrain_, params_.spacing, params_.boundary_sampling) {
   std::string bad = validateParams(d.params);
   require(bad.empty(), bad);
   if (!effects_.surface_tension) sph_.kappa = 0;  // the cohesion term is skipped inside the force pass
@@ -256,6 +256,8 @@ void World::setParams(const SimParams& q) {
   // run depend on when it happened (and a study compares whole runs), so it needs a reset.
   require(q.neighbor_search == params_.neighbor_search,
           "engine.neighbor_search changes with a reset");
+  require(q.boundary_sampling == params_.boundary_sampling,
+          "engine.boundary_sampling changes with a reset");
   // A new g changes every particle's potential energy: the ledger follows (what the fluid has been
   // given is counted in the new g from here on).
   if (q.gravity != params_.gravity) {

@@ -69,8 +69,10 @@ void getVec(std::istream& in, std::vector<T>& v, const char* what, uint64_t expe
 
 constexpr uint32_t kStateTag = 0x444C5257;  // "WRLD"
 // Version 2 adds the sediment defects (naive advection), version 3 the last density rate (the
-// next Δt's bound), version 4 the count of terrain contacts; older states load with none.
-constexpr uint32_t kStateVersion = 4;
+// next Δt's bound), version 4 the count of terrain contacts, version 5 the blocks of cells the
+// boundary particles stand for; older states load with none (each particle stands for part of
+// its triangle, as those builds sampled).
+constexpr uint32_t kStateVersion = 5;
 
 }  // namespace
 
@@ -126,6 +128,7 @@ void World::saveState(std::ostream& o) const {
   putVec(o, vhat_);
   putVec(o, terrain_.heights());
   putVec(o, boundary_.x), putVec(o, boundary_.triangle), putVec(o, boundary_.area), putVec(o, boundary_.bary);
+  putVec(o, boundary_.patch), putVec(o, boundary_.extent);
   putVec(o, sampler_.activeTiles());
   supply_.saveProgress(o);
   put(o, time_), put(o, dt_), put(o, step_), put(o, supply_.nextId);
@@ -165,6 +168,19 @@ void World::loadState(std::istream& in) {
   getVec(in, b.bary, "boundary coordinates", nb);
   for (int t : b.triangle)
     if (t < 0 || t >= terrain_.triangleCount()) throw std::runtime_error("state is corrupt (boundary triangle)");
+  b.cellsX = terrain_.nx() - 1;
+  if (version >= 5) {
+    getVec(in, b.patch, "boundary blocks", nb), getVec(in, b.extent, "boundary blocks", nb);
+    for (size_t j = 0; j < nb; ++j) {
+      if (b.patch[j] < 0) continue;
+      const int i0 = b.patch[j] % b.cellsX, k0 = b.patch[j] / b.cellsX;
+      const int bx = b.extent[j] & 15, bz = b.extent[j] >> 4;
+      if (bx < 1 || bz < 1 || i0 + bx > b.cellsX || k0 + bz > terrain_.nz() - 1)
+        throw std::runtime_error("state is corrupt (boundary block)");
+    }
+  } else {
+    b.patch.assign(nb, -1), b.extent.assign(nb, 0);
+  }
   std::vector<int> tiles;
   getVec(in, tiles, "active tiles");
   for (int t : tiles)
@@ -195,7 +211,7 @@ size_t World::memoryBytes() const {
   // The fluid's arrays, the predicted velocities and the scratch array.
   const size_t per = Fluid::bytesPerParticle() + sizeof(Vec3f) + sizeof(float);
   return fluid_.x.capacity() * per + neighbors_.bytes() +
-         boundary_.x.capacity() * (sizeof(Vec3f) + sizeof(int) + sizeof(double) + sizeof(Eigen::Vector2f)) +
+         boundary_.x.capacity() * (sizeof(Vec3f) + 2 * sizeof(int) + sizeof(double) + sizeof(Eigen::Vector2f) + 1) +
          (sedimentWork_.conc.capacity() + sedimentWork_.hind.capacity() +
           sedimentWork_.pairGeometry.capacity()) * sizeof(float) +
          sedimentWork_.scale.capacity() * sizeof(SedimentWorkspace::Scales) +

@@ -139,3 +139,65 @@ TEST_CASE("the wall surface is the terrain's envelope, never below it, and follo
   CHECK_FALSE(coarse.filters());
   CHECK(&coarse.of(t) == &t);
 }
+
+TEST_CASE("spacing sampling: one boundary particle per block of cells about Δs wide", "[boundary]") {
+  // Cells of 1 cm under Δs = 2.1 cm: blocks of 2 × 2 cells; a grid coarser than 2^(−1/4) Δs keeps
+  // a particle per triangle.
+  Heightfield hf(65, 65, 0.01, 0.01);
+  CHECK(BoundarySampler::blockCells(hf, 0.021) == 2);
+  CHECK(BoundarySampler::blockCells(hf, 0.009) == 1);
+  CHECK(BoundarySampler::blockCells(hf, 0.008) == 0);
+  CHECK(BoundarySampler::blockCells(hf, 0.5) == BoundarySampler::kTileCells);
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> u(0.0, 0.004);
+  for (double& h : hf.heights()) h = u(rng);  // rough, finer than Δs, but not steep
+  // A cliff through the block of cells (4–5, 2–3): 5 cm up from vertex column 5 on.
+  for (int k = 0; k < hf.nz(); ++k)
+    for (int i = 5; i < hf.nx(); ++i) hf.at(i, k) += 0.05;
+  BoundarySampler sampler(hf, 0.021, BoundarySampling::kSpacing);
+  REQUIRE(sampler.block() == 2);
+  REQUIRE(sampler.updateActiveTiles(hf, {Vec3f(0.03f, 0.01f, 0.03f)}, 0.02));
+  REQUIRE(sampler.activeTiles() == std::vector<int>{0});
+  BoundaryParticles b;
+  sampler.generate(hf, b);
+  // 16 blocks of the 8 × 8 cells; the 4 along the cliff (cells i = 4, 5) by triangle: 8 each.
+  size_t blocks = 0, byTriangle = 0;
+  double area = 0;
+  for (size_t j = 0; j < b.size(); ++j) {
+    area += b.area[j];
+    const Eigen::Vector3d p = b.x[j].cast<double>();
+    CHECK(hf.heightAt(p.x(), p.z()) == Approx(p.y()).margin(1e-6));  // on the terrain
+    CHECK(hf.distanceToTriangle(b.triangle[j], p) < 1e-6);  // on the triangle it follows
+    if (b.patch[j] < 0) {
+      ++byTriangle;
+      const int cell = b.triangle[j] / 2;
+      CHECK((cell % 64 == 4 || cell % 64 == 5));
+      continue;
+    }
+    ++blocks;
+    CHECK(b.extent[j] == (2 | 2 << 4));
+    CHECK(b.area[j] == Approx(4e-4).epsilon(1e-12));
+    // At the block's centre: its first cell's far corner.
+    const int i0 = b.patch[j] % 64, k0 = b.patch[j] / 64;
+    CHECK(i0 % 2 == 0);
+    CHECK(k0 % 2 == 0);
+    CHECK(p.x() == Approx(0.01 * (i0 + 1)).margin(1e-7));
+    CHECK(p.z() == Approx(0.01 * (k0 + 1)).margin(1e-7));
+  }
+  CHECK(blocks == 12);
+  CHECK(byTriangle == 4 * 8);
+  CHECK(area == Approx(0.08 * 0.08).epsilon(1e-12));  // the tile's area, exactly covered
+  // What a block particle exchanges goes to its 8 triangles in equal parts, summing to it.
+  const size_t j = size_t(std::find_if(b.patch.begin(), b.patch.end(), [](int q) { return q >= 0; }) - b.patch.begin());
+  std::vector<std::pair<int, double>> parts;
+  b.spread(j, -3e-7, [&](int tri, double v) { parts.emplace_back(tri, v); });
+  REQUIRE(parts.size() == 8);
+  double sum = 0;
+  for (auto [tri, v] : parts) {
+    sum += v;
+    CHECK(v == -3e-7 / 8);
+    const int cell = tri / 2, i = cell % 64, k = cell / 64;
+    CHECK((i - b.patch[j] % 64 >= 0 && i - b.patch[j] % 64 < 2 && k - b.patch[j] / 64 >= 0 && k - b.patch[j] / 64 < 2));
+  }
+  CHECK(sum == Approx(-3e-7).epsilon(1e-15));
+}

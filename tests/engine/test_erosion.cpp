@@ -21,6 +21,8 @@ struct OnePair {
     b.triangle.push_back(7);
     b.area.push_back(3e-4);
     b.bary.emplace_back(0.3f, 0.3f);
+    b.patch.push_back(-1);  // part of triangle 7
+    b.extent.push_back(0);
     grid.build(f.x, float(p.support()));
     grid.binOther(b.x, start, sorted);
     bn.build(grid, f.x, b.x, start, sorted, float(p.support()), false);
