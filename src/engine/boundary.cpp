@@ -94,15 +94,12 @@ void BoundarySampler::sampleBlock(const Heightfield& hf, int i0, int k0, int bx,
   out.extent.push_back(uint8_t(bx | bz << 4));
 }
 
-void BoundarySampler::follow(const Heightfield& hf, const std::vector<int>& triangles,
+void BoundarySampler::follow(const Heightfield& hf, const std::vector<uint32_t>& marks, uint32_t epoch,
                              BoundaryParticles& b) {
-  if (triangles.empty()) return;
-  std::vector<uint8_t> moved(size_t(hf.triangleCount()), 0);
-  for (int t : triangles) moved[size_t(t)] = 1;
   const size_t n = b.size();
 #pragma omp parallel for schedule(static)
   for (size_t k = 0; k < n; ++k) {
-    if (!moved[size_t(b.triangle[k])]) continue;
+    if (marks[size_t(b.triangle[k])] != epoch) continue;
     auto c = hf.triangleCorners(b.triangle[k]);
     const double u = b.bary[k].x(), w = b.bary[k].y();
     b.x[k].y() = float(c[0].y() + u * (c[1].y() - c[0].y()) + w * (c[2].y() - c[0].y()));

@@ -68,8 +68,10 @@ class BoundarySampler {
   bool updateActiveTiles(const Heightfield& hf, const std::vector<Vec3f>& fluid, double reach);
   /// Regenerates the particles of all active tiles, in tile order.
   void generate(const Heightfield& hf, BoundaryParticles& out) const;
-  /// Moves the particles of the given triangles (sorted ids) onto the current surface.
-  static void follow(const Heightfield& hf, const std::vector<int>& triangles, BoundaryParticles& b);
+  /// Moves the particles of the triangles marked `epoch` in `marks` (one entry per triangle:
+  /// TerrainAccumulator's marks of the triangles that moved) onto the current surface.
+  static void follow(const Heightfield& hf, const std::vector<uint32_t>& marks, uint32_t epoch,
+                     BoundaryParticles& b);
   /// Appends the particles of one triangle.
   static void sampleTriangle(const Heightfield& hf, int tri, double spacing, BoundaryParticles& out);
   /// Appends the particles of the block of bx × bz cells from cell (i0, k0): one, or those of its

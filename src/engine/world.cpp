@@ -239,7 +239,7 @@ void World::sedimentWork() {
   if (sfx.erosion || sfx.deposition) {
     timed(Pass::kTerrain, [&] {
       std::vector<int> moved = applyTerrainChange(terrain_, vertexArea_, accumulator_);
-      BoundarySampler::follow(terrain_, moved, boundary_);
+      if (!moved.empty()) BoundarySampler::follow(terrain_, accumulator_.mark, accumulator_.epoch, boundary_);
       wall_.follow(terrain_, moved);
     });
   }
