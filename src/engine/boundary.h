@@ -6,7 +6,7 @@
 //    sub-triangles (n = round(√area / Δs), at least 1) walked row by row like a scanline; one
 //    particle sits at each sub-triangle's centroid and stands for its area, so the particles of a
 //    triangle carry exactly its area (L_b² summed = triangle area);
-//  - a finer terrain, with engine.boundary_sampling=spacing (the default, `triangles`, samples
+//  - a finer terrain, with engine.boundary_sampling=spacing (the default; `triangles` samples
 //    every terrain as above): the cells are grouped into blocks of b × b (b = round(Δs / cell), at most a
 //    tile; clipped at the tile's edge), and one particle at the block's centre, on the terrain,
 //    stands for the block's area; what it exchanges with the water is spread over the block's

@@ -165,8 +165,8 @@ std::vector<ParamInfo> makeTable() {
           kNeighborChoices),
       choice<&P::boundary_sampling>(
           "engine.boundary_sampling", "Boundary sampling",
-          "triangles: n² boundary particles per terrain triangle, at least one; spacing: about one "
-          "per Δs² on a terrain finer than Δs, each for a block of cells (model.md).",
+          "spacing (default): about one boundary particle per Δs² on a terrain finer than Δs, each for "
+          "a block of cells (model.md); triangles: n² per terrain triangle, at least one.",
           kSamplingChoices),
       slider(real("engine.max_penetration_over_ds", "Penetration limit", "", "Δs", 0.0, 100.0,
                   "A particle deeper than this below the terrain stops the run.",

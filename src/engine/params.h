@@ -103,10 +103,10 @@ struct SimParams {
   /// Neighbor search: a uniform grid (default), or a kd-tree rebuilt every step (nanoflann; the
   /// paper's choice). Both find the same neighbor sets; the kd-tree lists are in ascending index.
   NeighborSearch neighbor_search = NeighborSearch::kGrid;
-  /// Boundary particles: n² per terrain triangle (default; at least one, so a terrain finer than
-  /// Δs carries several per Δs²), or about one per Δs² on a terrain finer than Δs, each standing
-  /// for a block of cells (docs/model.md, "boundary particles at the fluid's spacing").
-  BoundarySampling boundary_sampling = BoundarySampling::kTriangles;
+  /// Boundary particles: about one per Δs² on a terrain finer than Δs, each standing for a block
+  /// of cells (default; docs/model.md, "boundary particles at the fluid's spacing"), or n² per
+  /// terrain triangle (at least one, so a terrain finer than Δs carries several per Δs²).
+  BoundarySampling boundary_sampling = BoundarySampling::kSpacing;
   /// A particle deeper than this below the terrain stops the run [Δs].
   double max_penetration_over_ds = 0.5;
 

@@ -10,6 +10,7 @@ namespace scour {
 
 SedimentConstants::SedimentConstants(const SimParams& p)
     : volume(p.particleVolume()),
+      per_area(1.0 / (p.spacing * p.spacing)),
       c_max(p.c_max),
       rz(p.rz_exponent),
       vs0(p.settlingSpeed()),
@@ -185,7 +186,8 @@ void transferSediment(const SedimentConstants& k, const SedimentEffects& fx,
         if (naive) d -= naiveCoef * double(hind[i]) * grad * dt;
         if (deposit && ci > 0.0f) {
           forEachNeighbor(bnbrs, f.x, b.x, i, [&](uint32_t bj, const Vec3f& xib, float r) {
-            const double v = depositFlux(k, f.sed[i] / V, double(xib.y()), double(r)) * dt;
+            // Weighed by L_b²/Δs² (model.md): deposition per area, however finely sampled.
+            const double v = depositFlux(k, f.sed[i] / V, double(xib.y()), double(r)) * dt * (b.area[bj] * k.per_area);
             if (v <= 0.0) return;
             const double given = scaled ? v * scale[i].out : v;
             d -= given;

@@ -47,6 +47,8 @@ struct SedimentEffects {
 struct SedimentConstants {
   explicit SedimentConstants(const SimParams& p);
   double volume;      ///< V = m/ρ0 [m³]
+  /// 1/Δs²: a boundary particle's share of eq. (20) is L_b²/Δs² of a fluid-spacing one's [1/m²].
+  double per_area;
   double c_max, rz, vs0, diffusion, k_eps, tau_c, shear_k, shear_n, rho_s;
   double mass;          ///< m, fluid particle mass (the printed eq. 19) [kg]
   SettlingAdvection advection;  ///< SimParams::advection
