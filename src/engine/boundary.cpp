@@ -51,15 +51,21 @@ void BoundarySampler::generate(const Heightfield& hf, BoundaryParticles& out) co
     int ti = t % tilesX_, tk = t / tilesX_;
     const int iEnd = std::min(cellsX, (ti + 1) * kTileCells), kEnd = std::min(cellsZ, (tk + 1) * kTileCells);
     if (block_ == 0) {
-      for (int k = tk * kTileCells; k < kEnd; ++k)
-        for (int i = ti * kTileCells; i < iEnd; ++i)
-          for (int s = 0; s < 2; ++s) sampleTriangle(hf, 2 * (k * cellsX + i) + s, spacing_, out);
+      sampleCells(hf, ti * kTileCells, tk * kTileCells, iEnd, kEnd, spacing_, out);
       continue;
     }
     for (int k = tk * kTileCells; k < kEnd; k += block_)
       for (int i = ti * kTileCells; i < iEnd; i += block_)
         sampleBlock(hf, i, k, std::min(block_, iEnd - i), std::min(block_, kEnd - k), spacing_, out);
   }
+}
+
+void BoundarySampler::sampleCells(const Heightfield& hf, int i0, int k0, int i1, int k1, double spacing,
+                                  BoundaryParticles& out) {
+  const int cellsX = hf.nx() - 1;
+  for (int k = k0; k < k1; ++k)
+    for (int i = i0; i < i1; ++i)
+      for (int s = 0; s < 2; ++s) sampleTriangle(hf, 2 * (k * cellsX + i) + s, spacing, out);
 }
 
 void BoundarySampler::sampleBlock(const Heightfield& hf, int i0, int k0, int bx, int bz, double spacing,
@@ -72,12 +78,7 @@ void BoundarySampler::sampleBlock(const Heightfield& hf, int i0, int k0, int bx,
         auto c = hf.triangleCorners(2 * (k * cellsX + i) + s);
         area3d += 0.5 * (c[1] - c[0]).cross(c[2] - c[0]).norm();
       }
-  if (std::lround(std::sqrt(area3d) / spacing) >= 2) {
-    for (int k = k0; k < k0 + bz; ++k)
-      for (int i = i0; i < i0 + bx; ++i)
-        for (int s = 0; s < 2; ++s) sampleTriangle(hf, 2 * (k * cellsX + i) + s, spacing, out);
-    return;
-  }
+  if (std::lround(std::sqrt(area3d) / spacing) >= 2) return sampleCells(hf, i0, k0, i0 + bx, k0 + bz, spacing, out);
   const double xc = hf.x0() + (i0 + 0.5 * bx) * hf.dx(), zc = hf.z0() + (k0 + 0.5 * bz) * hf.dz();
   const int tri = hf.surface(xc, zc).triangle;
   auto c = hf.triangleCorners(tri);

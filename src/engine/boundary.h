@@ -60,8 +60,7 @@ class BoundarySampler {
  public:
   static constexpr int kTileCells = 8;
 
-  BoundarySampler(const Heightfield& hf, double spacing,
-                  BoundarySampling sampling = BoundarySampling::kTriangles);
+  BoundarySampler(const Heightfield& hf, double spacing, BoundarySampling sampling);
 
   /// Marks the tiles within `reach` (horizontally) of any fluid particle that is within `reach`
   /// above the terrain. Returns true if the set of active tiles changed.
@@ -74,6 +73,9 @@ class BoundarySampler {
                      BoundaryParticles& b);
   /// Appends the particles of one triangle.
   static void sampleTriangle(const Heightfield& hf, int tri, double spacing, BoundaryParticles& out);
+  /// Appends the particles of each triangle of the cells [i0, i1) × [k0, k1), row by row.
+  static void sampleCells(const Heightfield& hf, int i0, int k0, int i1, int k1, double spacing,
+                          BoundaryParticles& out);
   /// Appends the particles of the block of bx × bz cells from cell (i0, k0): one, or those of its
   /// triangles when it is too steep for one.
   static void sampleBlock(const Heightfield& hf, int i0, int k0, int bx, int bz, double spacing,

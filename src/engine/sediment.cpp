@@ -98,9 +98,9 @@ double depositFlux(const SedimentConstants& k, double cd, double dy, double r) {
 // Per-thread lists of (boundary particle, volume) for contiguous particle blocks; replayed in
 // thread order they are in particle order, whatever the thread count. Each volume goes to the
 // triangles its boundary particle stands for.
-using TriangleVolumes = std::vector<std::vector<std::pair<uint32_t, double>>>;
+using BoundaryVolumes = std::vector<std::vector<std::pair<uint32_t, double>>>;
 
-void replay(const TriangleVolumes& lists, const BoundaryParticles& b, TerrainAccumulator& acc) {
+void replay(const BoundaryVolumes& lists, const BoundaryParticles& b, TerrainAccumulator& acc) {
   for (const auto& l : lists)
     for (auto [j, v] : l) b.spread(j, v, [&](int tri, double part) { acc.add(tri, part); });
 }
@@ -145,7 +145,7 @@ void transferSediment(const SedimentConstants& k, const SedimentEffects& fx,
   // than it holds and every acceptor from passing C_max. Only when some factor is below 1 (rare:
   // a nearly empty donor or a nearly saturated acceptor) does the scaled pass run again; the
   // unscaled pass then equals it to the bit, so the result does not depend on which ran.
-  TriangleVolumes deposits;
+  BoundaryVolumes deposits;
   bool limited = false;
   auto exchange = [&](bool scaled) {
 #pragma omp parallel reduction(|| : limited)
@@ -241,7 +241,7 @@ void erode(const SedimentConstants& k, const NeighborLists& bnbrs, const Boundar
     if (tau <= k.tau_c) return 0.0;
     return area * k.k_eps * (tau - k.tau_c) * dt / k.rho_s;
   };
-  TriangleVolumes eroded;
+  BoundaryVolumes eroded;
 #pragma omp parallel
   {
     const int threads = omp_get_num_threads(), t = omp_get_thread_num();

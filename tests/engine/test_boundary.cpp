@@ -69,7 +69,7 @@ TEST_CASE("boundary particles cover each triangle with its exact area", "[bounda
 
 TEST_CASE("boundary particles exist only for tiles near water", "[boundary]") {
   Heightfield hf(65, 65, 0.1, 0.1);  // 8 × 8 tiles of 8 × 8 cells
-  BoundarySampler sampler(hf, 0.05);
+  BoundarySampler sampler(hf, 0.05, BoundarySampling::kTriangles);
   std::vector<Vec3f> fluid = {Vec3f(0.35f, 0.05f, 0.35f), Vec3f(0.36f, 0.06f, 0.34f),
                               Vec3f(5.0f, 3.0f, 5.0f)};  // the last one is far above the ground
   REQUIRE(sampler.updateActiveTiles(hf, fluid, 0.1));
