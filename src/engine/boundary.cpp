@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include <Eigen/Geometry>
+#include <omp.h>
 
 namespace scour {
 
@@ -11,25 +12,43 @@ BoundarySampler::BoundarySampler(const Heightfield& hf, double spacing, Boundary
     : spacing_(spacing),
       block_(sampling == BoundarySampling::kSpacing ? blockCells(hf, spacing) : 0),
       tilesX_((hf.nx() - 2) / kTileCells + 1),
-      tilesZ_((hf.nz() - 2) / kTileCells + 1),
-      mark_(size_t(tilesX_) * tilesZ_, 0) {}
+      tilesZ_((hf.nz() - 2) / kTileCells + 1) {}
 
 bool BoundarySampler::updateActiveTiles(const Heightfield& hf, const std::vector<Vec3f>& fluid,
                                         double reach) {
-  std::fill(mark_.begin(), mark_.end(), 0);
   const double tw = kTileCells * hf.dx(), td = kTileCells * hf.dz();
   auto tileX = [&](double x) { return std::clamp(int(std::floor((x - hf.x0()) / tw)), 0, tilesX_ - 1); };
   auto tileZ = [&](double z) { return std::clamp(int(std::floor((z - hf.z0()) / td)), 0, tilesZ_ - 1); };
-  for (const Vec3f& p : fluid) {
-    if (p.y() - hf.heightAt(p.x(), p.z()) > reach) continue;
-    int ia = tileX(p.x() - reach), ib = tileX(p.x() + reach);
-    int ka = tileZ(p.z() - reach), kb = tileZ(p.z() + reach);
-    for (int k = ka; k <= kb; ++k)
-      for (int i = ia; i <= ib; ++i) mark_[size_t(k) * tilesX_ + i] = 1;
-  }
+  const size_t n = fluid.size();
   std::vector<int> now;
-  for (int t = 0; t < int(mark_.size()); ++t)
-    if (mark_[t]) now.push_back(t);
+  // Each thread marks its own copy; a tile is active when any copy marks it (the same set at any
+  // thread count).
+#pragma omp parallel
+  {
+    const int threads = omp_get_num_threads();
+#pragma omp single
+    mark_.assign(size_t(threads) * size_t(tilesX_) * tilesZ_, 0);
+    uint8_t* mine = mark_.data() + size_t(omp_get_thread_num()) * tilesX_ * tilesZ_;
+#pragma omp for schedule(static)
+    for (size_t j = 0; j < n; ++j) {
+      const Vec3f& p = fluid[j];
+      if (p.y() - hf.heightAt(p.x(), p.z()) > reach) continue;
+      const int ia = tileX(p.x() - reach), ib = tileX(p.x() + reach);
+      const int ka = tileZ(p.z() - reach), kb = tileZ(p.z() + reach);
+      for (int k = ka; k <= kb; ++k)
+        for (int i = ia; i <= ib; ++i) mine[size_t(k) * tilesX_ + i] = 1;
+    }
+#pragma omp single
+    {
+      const size_t tiles = size_t(tilesX_) * tilesZ_;
+      for (size_t t = 0; t < tiles; ++t)
+        for (size_t c = 0; c < size_t(threads); ++c)
+          if (mark_[c * tiles + t]) {
+            now.push_back(int(t));
+            break;
+          }
+    }
+  }
   bool changed = now != active_;
   active_.swap(now);
   return changed;
@@ -43,11 +62,25 @@ int BoundarySampler::blockCells(const Heightfield& hf, double spacing) {
   return int(std::clamp(std::lround(r), 1L, long(kTileCells)));
 }
 
-void BoundarySampler::generate(const Heightfield& hf, BoundaryParticles& out) const {
-  out.clear();
+int BoundarySampler::tileOf(int triangle, int cellsX) const {
+  const int cell = triangle / 2;
+  return (cell / cellsX / kTileCells) * tilesX_ + (cell % cellsX) / kTileCells;
+}
+
+void BoundarySampler::generate(const Heightfield& hf, BoundaryParticles& b) const {
   const int cellsX = hf.nx() - 1, cellsZ = hf.nz() - 1;
+  BoundaryParticles out;
   out.cellsX = cellsX;
+  size_t j = 0;  // b's particles are in tile order: a cursor over them
   for (int t : active_) {
+    while (j < b.size() && tileOf(b.triangle[j], cellsX) < t) ++j;
+    if (j < b.size() && tileOf(b.triangle[j], cellsX) == t) {
+      // A tile that stays active keeps its particles (they have followed the terrain).
+      const size_t first = j;
+      while (j < b.size() && tileOf(b.triangle[j], cellsX) == t) ++j;
+      out.append(b, first, j);
+      continue;
+    }
     int ti = t % tilesX_, tk = t / tilesX_;
     const int iEnd = std::min(cellsX, (ti + 1) * kTileCells), kEnd = std::min(cellsZ, (tk + 1) * kTileCells);
     if (block_ == 0) {
@@ -58,6 +91,7 @@ void BoundarySampler::generate(const Heightfield& hf, BoundaryParticles& out) co
       for (int i = ti * kTileCells; i < iEnd; i += block_)
         sampleBlock(hf, i, k, std::min(block_, iEnd - i), std::min(block_, kEnd - k), spacing_, out);
   }
+  b = std::move(out);
 }
 
 void BoundarySampler::sampleCells(const Heightfield& hf, int i0, int k0, int i1, int k1, double spacing,
@@ -95,12 +129,15 @@ void BoundarySampler::sampleBlock(const Heightfield& hf, int i0, int k0, int bx,
   out.extent.push_back(uint8_t(bx | bz << 4));
 }
 
-void BoundarySampler::follow(const Heightfield& hf, const std::vector<uint32_t>& marks, uint32_t epoch,
-                             BoundaryParticles& b) {
+void BoundarySampler::follow(const Heightfield& hf, const std::vector<uint32_t>& vertexMarks,
+                             uint32_t epoch, BoundaryParticles& b) {
   const size_t n = b.size();
 #pragma omp parallel for schedule(static)
   for (size_t k = 0; k < n; ++k) {
-    if (marks[size_t(b.triangle[k])] != epoch) continue;
+    const auto verts = hf.triangleVertices(b.triangle[k]);
+    bool moved = false;
+    for (const auto& v : verts) moved = moved || vertexMarks[size_t(v[1]) * hf.nx() + v[0]] == epoch;
+    if (!moved) continue;
     auto c = hf.triangleCorners(b.triangle[k]);
     const double u = b.bary[k].x(), w = b.bary[k].y();
     b.x[k].y() = float(c[0].y() + u * (c[1].y() - c[0].y()) + w * (c[2].y() - c[0].y()));

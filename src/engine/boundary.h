@@ -42,6 +42,12 @@ struct BoundaryParticles {
   int cellsX = 0;  ///< the terrain's cells along x
   size_t size() const { return x.size(); }
   void clear() { x.clear(), triangle.clear(), area.clear(), bary.clear(), patch.clear(), extent.clear(); }
+  /// Appends the particles [first, last) of `from`.
+  void append(const BoundaryParticles& from, size_t first, size_t last) {
+    auto copy = [&](auto& to, const auto& src) { to.insert(to.end(), src.begin() + long(first), src.begin() + long(last)); };
+    copy(x, from.x), copy(triangle, from.triangle), copy(area, from.area), copy(bary, from.bary);
+    copy(patch, from.patch), copy(extent, from.extent);
+  }
   /// Calls add(triangle, volume) for the triangles particle j stands for, `v` shared by area.
   template <class Add>
   void spread(size_t j, double v, Add&& add) const {
@@ -65,11 +71,14 @@ class BoundarySampler {
   /// Marks the tiles within `reach` (horizontally) of any fluid particle that is within `reach`
   /// above the terrain. Returns true if the set of active tiles changed.
   bool updateActiveTiles(const Heightfield& hf, const std::vector<Vec3f>& fluid, double reach);
-  /// Regenerates the particles of all active tiles, in tile order.
-  void generate(const Heightfield& hf, BoundaryParticles& out) const;
-  /// Moves the particles of the triangles marked `epoch` in `marks` (one entry per triangle:
-  /// TerrainAccumulator's marks of the triangles that moved) onto the current surface.
-  static void follow(const Heightfield& hf, const std::vector<uint32_t>& marks, uint32_t epoch,
+  /// Brings `b` to the particles of the active tiles, in tile order: a tile that `b` already
+  /// holds keeps its particles (made when it became active, following the terrain since), a newly
+  /// active tile is sampled from the current terrain, and a tile no longer active is dropped. `b`
+  /// must be in tile order (as this leaves it); an empty one is sampled whole.
+  void generate(const Heightfield& hf, BoundaryParticles& b) const;
+  /// Moves the particles whose triangle has a vertex marked `epoch` in `vertexMarks` (one entry
+  /// per vertex: TerrainAccumulator's marks of the vertices that moved) onto the current surface.
+  static void follow(const Heightfield& hf, const std::vector<uint32_t>& vertexMarks, uint32_t epoch,
                      BoundaryParticles& b);
   /// Appends the particles of one triangle.
   static void sampleTriangle(const Heightfield& hf, int tri, double spacing, BoundaryParticles& out);
@@ -95,7 +104,8 @@ class BoundarySampler {
   int block_;
   int tilesX_, tilesZ_;
   std::vector<int> active_;
-  std::vector<uint8_t> mark_;
+  std::vector<uint8_t> mark_;  // updateActiveTiles' marks, one copy per thread
+  int tileOf(int triangle, int cellsX) const;
 };
 
 }  // namespace scour

@@ -126,25 +126,12 @@ std::vector<int> WallSurface::spread(const Heightfield& t, const std::vector<int
   return out;
 }
 
-void WallSurface::follow(const Heightfield& terrain, const std::vector<int>& movedTriangles) {
-  if (disk_.empty() || movedTriangles.empty()) return;
-  const int cells = terrain.nx() - 1;
-  // The moved cells' corners, each once (a vertex is a corner of up to 8 moved triangles; the
-  // disk around it is walked once).
-  if (++epoch_ == 0) std::fill(mark_.begin(), mark_.end(), 0u), epoch_ = 1;
-  std::vector<int> corners;
-  for (int t : movedTriangles) {
-    const int ci = (t / 2) % cells, ck = (t / 2) / cells;
-    for (int b = 0; b < 2; ++b)
-      for (int a = 0; a < 2; ++a) {
-        const int v = (ck + b) * terrain.nx() + ci + a;
-        if (mark_[size_t(v)] != epoch_) mark_[size_t(v)] = epoch_, corners.push_back(v);
-      }
-  }
+void WallSurface::follow(const Heightfield& terrain, const std::vector<int>& movedVertices) {
+  if (disk_.empty() || movedVertices.empty()) return;
   // A vertex's maximum reads the terrain within the radius, its average the maxima within it.
   // Each vertex is written once from what the pass before wrote: in parallel, and the same at
   // any thread count.
-  const std::vector<int> maxima = spread(terrain, corners);
+  const std::vector<int> maxima = spread(terrain, movedVertices);
   const long nm = long(maxima.size());
 #pragma omp parallel for schedule(static)
   for (long m = 0; m < nm; ++m) {

@@ -81,8 +81,9 @@ class WallSurface {
  public:
   WallSurface() = default;
   WallSurface(const Heightfield& terrain, double radius);
-  /// Follows the terrain after the triangles `movedTriangles` changed (applyTerrainChange).
-  void follow(const Heightfield& terrain, const std::vector<int>& movedTriangles);
+  /// Follows the terrain after the heights of `movedVertices` (k·nx + i, each once) changed
+  /// (applyTerrainChange).
+  void follow(const Heightfield& terrain, const std::vector<int>& movedVertices);
   const Heightfield& of(const Heightfield& terrain) const {
     return disk_.empty() ? terrain : smooth_;
   }

@@ -123,17 +123,12 @@ void transferSediment(const SedimentConstants& k, const SedimentEffects& fx,
   const bool deposit = fx.deposition && bnbrs.size() == n;
   std::vector<float>& conc = ws.conc;
   std::vector<float>& hind = ws.hind;
-  std::vector<float>& fr = ws.pairGeometry;  // |F(r)|/r of each pair, kept for a second pass
   std::vector<SedimentWorkspace::Scales>& scale = ws.scale;
   std::vector<double>& delta = ws.delta;
   conc.resize(n);
   hind.resize(n);
   scale.assign(n, {});
   delta.assign(n, 0.0);
-  ws.pairOffset.resize(n + 1);
-  ws.pairOffset[0] = 0;
-  for (size_t i = 0; i < n; ++i) ws.pairOffset[i + 1] = ws.pairOffset[i] + nbrs.count(i);
-  fr.resize(ws.pairOffset[n]);
 #pragma omp parallel for schedule(static)
   for (size_t i = 0; i < n; ++i) {
     conc[i] = float(f.sed[i] / V);
@@ -160,17 +155,17 @@ void transferSediment(const SedimentConstants& k, const SedimentEffects& fx,
         const float ci = conc[i];
         double d = 0.0, out = 0.0, in = 0.0, grad = 0.0;
         const uint32_t* js = nbrs.begin(i);
-        float* fri = fr.data() + ws.pairOffset[i];
         for (uint32_t c = 0; c < nbrs.count(i); ++c) {
           const uint32_t j = js[c];
           const float cj = conc[j];
           if (ci == 0.0f && cj == 0.0f) continue;
           const float dy = f.x[i].y() - f.x[j].y();
-          if (!scaled) fri[c] = pair.ratio((f.x[i] - f.x[j]).norm());
-          PairGeometry g = pair.geometry(std::abs(dy), fri[c]);
+          // |F(r)|/r: the same bits in the unscaled and the scaled pass.
+          const float fr = pair.ratio((f.x[i] - f.x[j]).norm());
+          PairGeometry g = pair.geometry(std::abs(dy), fr);
           if (printed) g.diffuse = pair.printedDiffusion((f.x[i] - f.x[j]).norm(), f.rho[i], f.rho[j]);
           // The symmetric-difference gradient Σ_j V (C_j − C_i) ∇W_ij, y component over −V.
-          if (naive) grad += double(cj - ci) * double(fri[c]) * double(dy);
+          if (naive) grad += double(cj - ci) * double(fr) * double(dy);
           // Settling carries sediment down the pair (up, for grains lighter than water).
           const bool iDownstream = rising ? dy > 0.0f : dy < 0.0f;
           const bool jDownstream = rising ? dy < 0.0f : dy > 0.0f;
@@ -291,19 +286,29 @@ double terrainVolume(const Heightfield& hf, const std::vector<double>& areas, do
   return v;
 }
 
-void depositOnTriangle(Heightfield& hf, const std::vector<double>& areas, int tri, double volume) {
-  if (volume == 0.0) return;
-  auto verts = hf.triangleVertices(tri);
-  std::array<size_t, 3> idx;
-  for (int a = 0; a < 3; ++a) idx[a] = size_t(verts[a][1]) * hf.nx() + verts[a][0];
-  auto& h = hf.heights();
+namespace {
+
+// The vertex indices (k·nx + i) of a triangle's corners, in the order of triangleVertices.
+std::array<size_t, 3> cornerIndices(const Heightfield& hf, int tri) {
+  const int cells = hf.nx() - 1, cell = tri / 2;
+  const size_t v = size_t(cell / cells) * size_t(hf.nx()) + size_t(cell % cells), up = size_t(hf.nx());
+  if (tri % 2 == 0) return {v, v + 1, v + up + 1};
+  return {v, v + up + 1, v + up};
+}
+
+// depositOnTriangle on the corners idx.
+void depositOnCorners(std::vector<double>& h, const std::vector<double>& areas, std::array<size_t, 3> idx,
+                      double volume) {
   const double sign = volume > 0 ? 1.0 : -1.0;
   double left = std::abs(volume);
   // Order from the lowest (deposit) or highest (erosion) vertex; ties by index, deterministically.
-  std::sort(idx.begin(), idx.end(), [&](size_t p, size_t q) {
-    double hp = sign * h[p], hq = sign * h[q];
+  auto before = [&](size_t p, size_t q) {
+    const double hp = sign * h[p], hq = sign * h[q];
     return hp < hq || (hp == hq && p < q);
-  });
+  };
+  if (before(idx[1], idx[0])) std::swap(idx[0], idx[1]);
+  if (before(idx[2], idx[1])) std::swap(idx[1], idx[2]);
+  if (before(idx[1], idx[0])) std::swap(idx[0], idx[1]);
   // Work in "sign-flipped" heights g = sign·h so both cases fill the lowest first.
   double areaSum = 0.0;
   for (int level = 0; level < 3; ++level) {
@@ -321,25 +326,67 @@ void depositOnTriangle(Heightfield& hf, const std::vector<double>& areas, int tr
   }
 }
 
+}  // namespace
+
+void depositOnTriangle(Heightfield& hf, const std::vector<double>& areas, int tri, double volume) {
+  if (volume == 0.0) return;
+  depositOnCorners(hf.heights(), areas, cornerIndices(hf, tri), volume);
+}
+
 std::vector<int> applyTerrainChange(Heightfield& hf, const std::vector<double>& areas,
                                     TerrainAccumulator& acc) {
-  std::vector<int> tris = acc.touched;
-  std::sort(tris.begin(), tris.end());
-  std::vector<int> moved;
-  if (acc.mark.size() != acc.volume.size()) acc.mark.assign(acc.volume.size(), 0u), acc.epoch = 0;
-  if (++acc.epoch == 0) std::fill(acc.mark.begin(), acc.mark.end(), 0u), acc.epoch = 1;
-  for (int t : tris) {
-    depositOnTriangle(hf, areas, t, acc.volume[size_t(t)]);
-    acc.volume[size_t(t)] = 0.0;
-    // Every triangle sharing a vertex of t may have moved: the cells around t's cell.
-    const int cells = hf.nx() - 1, cell = t / 2, ci = cell % cells, ck = cell / cells;
-    for (int k = std::max(ck - 1, 0); k <= std::min(ck + 1, hf.nz() - 2); ++k)
-      for (int i = std::max(ci - 1, 0); i <= std::min(ci + 1, cells - 1); ++i)
-        for (int s = 0; s < 2; ++s) {
-          const int m = 2 * (k * cells + i) + s;
-          if (acc.mark[size_t(m)] != acc.epoch) acc.mark[size_t(m)] = acc.epoch, moved.push_back(m);
-        }
+  const int cells = hf.nx() - 1, rows = hf.nz() - 1;
+  if (acc.vertexMark.size() != hf.heights().size()) acc.vertexMark.assign(hf.heights().size(), 0u), acc.epoch = 0;
+  if (++acc.epoch == 0) std::fill(acc.vertexMark.begin(), acc.vertexMark.end(), 0u), acc.epoch = 1;
+  const uint32_t epoch = acc.epoch;
+  // Each cell row's span of touched triangles, and where its changed vertices go (at most 3 for
+  // each triangle touched in it).
+  const int perRow = 2 * cells;
+  std::vector<int>& start = acc.rowStart;
+  std::vector<int>& lo = acc.rowLo;
+  std::vector<int>& hi = acc.rowHi;
+  start.assign(size_t(rows) + 1, 0);
+  lo.assign(size_t(rows), INT32_MAX);
+  hi.assign(size_t(rows), -1);
+  for (int t : acc.touched) {
+    const size_t k = size_t(t / perRow);
+    ++start[k + 1], lo[k] = std::min(lo[k], t), hi[k] = std::max(hi[k], t);
   }
+  std::vector<int> live;
+  for (int k = 0; k < rows; ++k) {
+    start[size_t(k) + 1] += start[size_t(k)];
+    if (hi[size_t(k)] >= 0) live.push_back(k);
+  }
+  std::vector<int>& changedAt = acc.changedAt;
+  changedAt.assign(3 * acc.touched.size(), -1);
+  // A row's triangles in ascending order: its span of the accumulator, read in place.
+  auto applyRow = [&](int k) {
+    int* out = changedAt.data() + 3 * size_t(start[size_t(k)]);
+    std::vector<double>& h = hf.heights();
+    for (int t = lo[size_t(k)]; t <= hi[size_t(k)]; ++t) {
+      const double v = acc.volume[size_t(t)];
+      if (v == 0.0) continue;
+      acc.volume[size_t(t)] = 0.0;
+      const std::array<size_t, 3> idx = cornerIndices(hf, t);
+      const std::array<double, 3> was = {h[idx[0]], h[idx[1]], h[idx[2]]};
+      depositOnCorners(h, areas, idx, v);
+      for (int a = 0; a < 3; ++a)
+        if (h[idx[a]] != was[a] && acc.vertexMark[idx[a]] != epoch)
+          acc.vertexMark[idx[a]] = epoch, *out++ = int(idx[a]);
+    }
+  };
+  // Rows k and k + 2 share no vertex: each round's rows run in parallel, a row on one thread.
+  for (int parity = 0; parity < 2; ++parity) {
+    std::vector<int> round;
+    for (int k : live)
+      if (k % 2 == parity) round.push_back(k);
+    const long nr = long(round.size());
+#pragma omp parallel for schedule(dynamic, 1)
+    for (long r = 0; r < nr; ++r) applyRow(round[size_t(r)]);
+  }
+  std::vector<int> moved;
+  for (int v : changedAt)
+    if (v >= 0) moved.push_back(v);
   acc.touched.clear();
   return moved;
 }

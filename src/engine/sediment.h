@@ -66,14 +66,20 @@ struct SedimentConstants {
 struct TerrainAccumulator {
   std::vector<double> volume;   ///< per triangle
   std::vector<int> touched;     ///< triangles with a non-zero entry, in first-touch order
-  /// applyTerrainChange's marks of the triangles it has listed as moved (== epoch: this step).
-  std::vector<uint32_t> mark;
+  /// Per vertex: == epoch when applyTerrainChange changed its height this step.
+  std::vector<uint32_t> vertexMark;
   uint32_t epoch = 0;
-  void resize(int triangles) { volume.assign(size_t(triangles), 0.0), mark.assign(size_t(triangles), 0u), epoch = 0; }
+  /// applyTerrainChange's scratch (per cell row: the touched count and span), kept for its memory.
+  std::vector<int> rowStart, rowLo, rowHi, changedAt;
+  void resize(int triangles, size_t vertices) {
+    volume.assign(size_t(triangles), 0.0), vertexMark.assign(vertices, 0u), epoch = 0;
+  }
   void add(int tri, double v) {
     if (volume[size_t(tri)] == 0.0) touched.push_back(tri);
     volume[size_t(tri)] += v;
   }
+  /// Whether vertex v (k·nx + i) moved in the last applyTerrainChange.
+  bool moved(int v) const { return vertexMark[size_t(v)] == epoch; }
 };
 
 /// What a non-conservative form did to the sediment (only the naive advection makes these
@@ -90,10 +96,9 @@ struct SedimentWorkspace {
   struct Scales {
     double out = 1, in = 1;  ///< the donor's and the acceptor's factor
   };
-  std::vector<float> conc, hind, pairGeometry;
+  std::vector<float> conc, hind;
   std::vector<Scales> scale;
   std::vector<double> delta;
-  std::vector<size_t> pairOffset;
   /// The last call's defects (naive advection only; zero otherwise).
   SedimentDefects defects;
 };
@@ -120,10 +125,11 @@ double terrainVolume(const Heightfield& hf, const std::vector<double>& areas, do
 /// Σ Δh_v A_v = V to rounding.
 void depositOnTriangle(Heightfield& hf, const std::vector<double>& areas, int tri, double volume);
 
-/// Step 3: applies and clears the accumulator, in ascending triangle order. Returns the triangles
-/// whose surface moved (those sharing a changed vertex), each once, in an order that depends on
-/// the touched triangles alone (not sorted: a sort of the nine cells around each touched one was
-/// a fifth of a step on a terrain finer than Δs).
+/// Step 3: applies and clears the accumulator. The triangles of one cell row go in ascending
+/// order; the rows run in two rounds, the even rows then the odd ones, each round in parallel
+/// (two rows of a round share no vertex), so the result is the same at any thread count. Marks
+/// the vertices whose height changed (acc.moved) and returns them, each once, in an order that
+/// depends on the touched triangles alone.
 std::vector<int> applyTerrainChange(Heightfield& hf, const std::vector<double>& areas,
                                     TerrainAccumulator& acc);
 

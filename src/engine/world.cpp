@@ -104,7 +104,7 @@ World::World(WorldDesc d)
   wall_ = wallSurfaceFor(terrain_, params_);
   vertexArea_ = vertexAreas(terrain_);
   terrainReference_ = terrain_.minHeight();
-  accumulator_.resize(terrain_.triangleCount());
+  accumulator_.resize(terrain_.triangleCount(), terrain_.heights().size());
   require(double(terrain_.heights().size()) <= Limits::kMaxTerrainVertices, "terrain: more vertices than the limit");
   supply_.maxParticles = size_t(particleCapacity(double(terrain_.heights().size())));
   require(d.particles.size() <= supply_.maxParticles, "particles: more than the memory limit allows");
@@ -238,8 +238,8 @@ void World::sedimentWork() {
   if (sfx.erosion) timed(Pass::kErosion, [&] { erode(sediment_, neighbors_.boundary(), boundary_, dt_, fluid_, accumulator_); });
   if (sfx.erosion || sfx.deposition) {
     timed(Pass::kTerrain, [&] {
-      std::vector<int> moved = applyTerrainChange(terrain_, vertexArea_, accumulator_);
-      if (!moved.empty()) BoundarySampler::follow(terrain_, accumulator_.mark, accumulator_.epoch, boundary_);
+      const std::vector<int> moved = applyTerrainChange(terrain_, vertexArea_, accumulator_);
+      if (!moved.empty()) BoundarySampler::follow(terrain_, accumulator_.vertexMark, accumulator_.epoch, boundary_);
       wall_.follow(terrain_, moved);
     });
   }

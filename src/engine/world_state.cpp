@@ -212,11 +212,9 @@ size_t World::memoryBytes() const {
   const size_t per = Fluid::bytesPerParticle() + sizeof(Vec3f) + sizeof(float);
   return fluid_.x.capacity() * per + neighbors_.bytes() +
          boundary_.x.capacity() * (sizeof(Vec3f) + 2 * sizeof(int) + sizeof(double) + sizeof(Eigen::Vector2f) + 1) +
-         (sedimentWork_.conc.capacity() + sedimentWork_.hind.capacity() +
-          sedimentWork_.pairGeometry.capacity()) * sizeof(float) +
+         (sedimentWork_.conc.capacity() + sedimentWork_.hind.capacity()) * sizeof(float) +
          sedimentWork_.scale.capacity() * sizeof(SedimentWorkspace::Scales) +
-         sedimentWork_.delta.capacity() * sizeof(double) +
-         sedimentWork_.pairOffset.capacity() * sizeof(size_t);
+         sedimentWork_.delta.capacity() * sizeof(double);
 }
 
 }  // namespace scour

@@ -83,6 +83,45 @@ TEST_CASE("boundary particles exist only for tiles near water", "[boundary]") {
   CHECK(sampler.activeTiles() == std::vector<int>{0, 1});
 }
 
+TEST_CASE("a tile that stays active keeps its particles; a new one is sampled", "[boundary]") {
+  Heightfield hf(65, 65, 0.1, 0.1);
+  BoundarySampler sampler(hf, 0.05, BoundarySampling::kTriangles);
+  std::vector<Vec3f> fluid = {Vec3f(0.35f, 0.05f, 0.35f)};
+  REQUIRE(sampler.updateActiveTiles(hf, fluid, 0.1));
+  BoundaryParticles b;
+  sampler.generate(hf, b);
+  REQUIRE(b.size() == 128);
+  // The terrain under tile 0 moves; its particles are marked as having followed it (a lift the
+  // sampler would not make), so a resample would show.
+  for (size_t j = 0; j < b.size(); ++j) b.x[j].y() += 0.25f;
+  const BoundaryParticles tile0 = b;
+  fluid.push_back(Vec3f(1.2f, 0.0f, 0.2f));  // tile 1 (x from 0.8 to 1.6) alone
+  REQUIRE(sampler.updateActiveTiles(hf, fluid, 0.1));
+  REQUIRE(sampler.activeTiles() == std::vector<int>{0, 1});
+  sampler.generate(hf, b);
+  REQUIRE(b.size() == 256);
+  for (size_t j = 0; j < 128; ++j) {
+    CHECK(b.x[j] == tile0.x[j]);  // kept, not resampled
+    CHECK(b.triangle[j] == tile0.triangle[j]);
+  }
+  // Tile 1's particles are those a fresh sampling of it gives, after tile 0's.
+  BoundaryParticles fresh;
+  fresh.cellsX = 64;
+  BoundarySampler::sampleCells(hf, 8, 0, 16, 8, 0.05, fresh);
+  REQUIRE(fresh.size() == 128);
+  for (size_t j = 0; j < 128; ++j) {
+    CHECK(b.x[128 + j] == fresh.x[j]);
+    CHECK(b.area[128 + j] == fresh.area[j]);
+  }
+  // Tile 0 leaves: only tile 1's particles stay, unchanged.
+  fluid.erase(fluid.begin());
+  REQUIRE(sampler.updateActiveTiles(hf, fluid, 0.1));
+  REQUIRE(sampler.activeTiles() == std::vector<int>{1});
+  sampler.generate(hf, b);
+  REQUIRE(b.size() == 128);
+  for (size_t j = 0; j < 128; ++j) CHECK(b.x[j] == fresh.x[j]);
+}
+
 TEST_CASE("no-slip friction slows water down the slope", "[boundary][physics]") {
   auto meanSpeed = [](double friction) {
     Scene s = makePreset("slope", 0.25);
@@ -127,11 +166,11 @@ TEST_CASE("the wall surface is the terrain's envelope, never below it, and follo
   const double mean = (mx(10, 10) + mx(9, 10) + mx(11, 10) + mx(10, 9) + mx(10, 11)) / 5;
   CHECK(w.of(t).at(10, 10) == Approx(mean));
 
-  // Erosion moves one cell's corners: following it gives what a rebuild gives, to the bit.
+  // Erosion moves two vertices: following them gives what a rebuild gives, to the bit.
   Heightfield moved = t;
   moved.at(20, 15) += 0.05, moved.at(21, 16) -= 0.03;
   WallSurface followed = w;
-  followed.follow(moved, {2 * (15 * 40 + 20), 2 * (15 * 40 + 20) + 1});
+  followed.follow(moved, {15 * 41 + 20, 16 * 41 + 21});
   CHECK(followed.of(moved).heights() == WallSurface(moved, 0.01).of(moved).heights());
 
   // A grid coarser than the radius: the terrain itself, not a copy.

@@ -1,5 +1,6 @@
 // Erosion (eqs. 9–10) and the terrain update (eqs. 21–22) in isolation.
 #include <catch2/catch.hpp>
+#include <omp.h>
 #include <cmath>
 
 #include "engine/sediment.h"
@@ -35,7 +36,7 @@ TEST_CASE("a particle moving over one boundary particle erodes L_b² K_ε (τ �
   REQUIRE(s.bn.count(0) == 1);
   SedimentConstants k(s.p);
   TerrainAccumulator acc;
-  acc.resize(16);
+  acc.resize(16, 16);
   const double dt = 1e-3;
   erode(k, s.bn, s.b, dt, s.f, acc);
   const double l = double(s.f.x[0].y());  // distance to the boundary particle
@@ -56,7 +57,7 @@ TEST_CASE("no erosion below the critical shear stress", "[erosion]") {
   OnePair s(v, l);
   SedimentConstants k(s.p);
   TerrainAccumulator acc;
-  acc.resize(16);
+  acc.resize(16, 16);
   erode(k, s.bn, s.b, 1e-3, s.f, acc);
   CHECK(s.f.sed[0] == 0.0);
   CHECK(acc.touched.empty());
@@ -67,7 +68,7 @@ TEST_CASE("erosion stops at C_max", "[erosion]") {
   s.b.area[0] = 1.0;  // a huge boundary particle: far more than a particle can carry
   SedimentConstants k(s.p);
   TerrainAccumulator acc;
-  acc.resize(16);
+  acc.resize(16, 16);
   erode(k, s.bn, s.b, 1e-2, s.f, acc);
   CHECK(s.f.sed[0] == Approx(s.p.c_max * k.volume).epsilon(1e-14));
   CHECK(acc.volume[7] == -s.f.sed[0]);
@@ -118,23 +119,63 @@ TEST_CASE("a deposit raises the lowest vertex first and keeps the volume exact",
     }
 }
 
-TEST_CASE("applyTerrainChange applies every triangle and reports the moved ones", "[terrain]") {
+TEST_CASE("applyTerrainChange applies every triangle and reports the moved vertices", "[terrain]") {
   Heightfield hf(10, 10, 0.1, 0.1);
   auto areas = vertexAreas(hf);
   TerrainAccumulator acc;
-  acc.resize(hf.triangleCount());
+  acc.resize(hf.triangleCount(), hf.heights().size());
   acc.add(40, 1e-3);
   acc.add(3, -2e-4);
   acc.add(40, 5e-4);
+  acc.add(41, 2e-4);  // shares two vertices with 40
+  acc.add(60, 0.0);   // touched, nothing to apply
+  const Heightfield before = hf;
   auto moved = applyTerrainChange(hf, areas, acc);
-  CHECK(terrainVolume(hf, areas, 0.0) == Approx(1.5e-3 - 2e-4).epsilon(1e-12));
+  CHECK(terrainVolume(hf, areas, 0.0) == Approx(1.7e-3 - 2e-4).epsilon(1e-12));
   std::vector<int> once = moved;
   std::sort(once.begin(), once.end());
   CHECK(std::adjacent_find(once.begin(), once.end()) == once.end());  // each once
-  // The cells around cells 1 and 20 (of 9 × 9): 6 + 9, 2 of them shared; 2 triangles each.
-  CHECK(moved.size() == 26);
-  CHECK(std::find(moved.begin(), moved.end(), 40) != moved.end());
-  CHECK(std::find(moved.begin(), moved.end(), 3) != moved.end());
+  // Exactly the vertices whose height changed are reported and marked.
+  std::vector<int> changed;
+  for (int v = 0; v < int(hf.heights().size()); ++v) {
+    CHECK(acc.moved(v) == (hf.heights()[size_t(v)] != before.heights()[size_t(v)]));
+    if (acc.moved(v)) changed.push_back(v);
+  }
+  CHECK(once == changed);
+  // Triangle 3 (cell 1: vertices 1, 12, 11 of a flat terrain) cuts all three; 40 and 41 (cell 20,
+  // vertices 22, 23, 32, 33) raise the four.
+  CHECK(changed == std::vector<int>{1, 11, 12, 22, 23, 32, 33});
   CHECK(acc.touched.empty());
   CHECK(acc.volume[40] == 0.0);
+  CHECK(acc.volume[41] == 0.0);
+}
+
+TEST_CASE("applyTerrainChange gives the same terrain at any thread count", "[terrain][determinism]") {
+  // Volumes over many rows, in an order unrelated to the rows: each row in ascending order, the
+  // even rows then the odd ones, whatever the threads.
+  auto run = [](int threads) {
+    omp_set_num_threads(threads);
+    Heightfield hf(60, 50, 0.02, 0.02);
+    for (int k = 0; k < hf.nz(); ++k)
+      for (int i = 0; i < hf.nx(); ++i) hf.at(i, k) = 0.01 * std::sin(0.3 * i) * std::cos(0.2 * k);
+    auto areas = vertexAreas(hf);
+    TerrainAccumulator acc;
+    acc.resize(hf.triangleCount(), hf.heights().size());
+    uint32_t seed = 11;
+    for (int e = 0; e < 20000; ++e) {
+      seed = seed * 1664525u + 1013904223u;
+      const int tri = int((seed >> 8) % uint32_t(hf.triangleCount()));
+      acc.add(tri, 1e-7 * (double((seed >> 4) % 2001) - 1000.0));
+    }
+    const double v0 = terrainVolume(hf, areas, 0.0);
+    double expected = 0;
+    for (double v : acc.volume) expected += v;
+    applyTerrainChange(hf, areas, acc);
+    CHECK(terrainVolume(hf, areas, 0.0) - v0 == Approx(expected).epsilon(1e-10));
+    return hf.heights();
+  };
+  const auto two = run(2);
+  CHECK(run(1) == two);
+  CHECK(run(3) == two);
+  omp_set_num_threads(omp_get_num_procs());
 }
