@@ -59,6 +59,14 @@ class Grid {
   template <class F>
   void forEachCandidate(const Vec3f& p, const std::vector<uint32_t>& start,
                         const std::vector<uint32_t>& sorted, F&& f) const {
+    forEachCandidateRange(p, start, [&](uint32_t b, uint32_t e) {
+      for (uint32_t k = b; k < e; ++k) f(sorted[k]);
+    });
+  }
+  /// The same candidates as ranges [b, e) of the sorted array, a non-empty one per row of
+  /// cells, in the same order.
+  template <class F>
+  void forEachCandidateRange(const Vec3f& p, const std::vector<uint32_t>& start, F&& f) const {
     Eigen::Vector3i c = cellOf(p);
     const int xa = std::max(c.x() - 1, 0), xb = std::min(c.x() + 1, dims_.x() - 1);
     if (xa > xb) return;
@@ -67,7 +75,7 @@ class Grid {
       for (int cy = c.y() - 1; cy <= c.y() + 1; ++cy) {
         if (cy < 0 || cy >= dims_.y()) continue;
         const uint32_t b = start[linear(xa, cy, cz)], e = start[linear(xb, cy, cz) + 1];
-        for (uint32_t k = b; k < e; ++k) f(sorted[k]);
+        if (b < e) f(b, e);
       }
     }
   }
