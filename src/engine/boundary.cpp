@@ -134,9 +134,8 @@ void BoundarySampler::follow(const Heightfield& hf, const std::vector<uint32_t>&
   const size_t n = b.size();
 #pragma omp parallel for schedule(static)
   for (size_t k = 0; k < n; ++k) {
-    const auto verts = hf.triangleVertices(b.triangle[k]);
     bool moved = false;
-    for (const auto& v : verts) moved = moved || vertexMarks[size_t(v[1]) * hf.nx() + v[0]] == epoch;
+    for (size_t v : hf.triangleVertexIndices(b.triangle[k])) moved = moved || vertexMarks[v] == epoch;
     if (!moved) continue;
     auto c = hf.triangleCorners(b.triangle[k]);
     const double u = b.bary[k].x(), w = b.bary[k].y();

@@ -63,6 +63,13 @@ class Heightfield {
   std::array<Eigen::Vector3d, 3> triangleCorners(int tri) const;
   /// Vertex indices (i, k) of a triangle's corners, in the order of triangleCorners.
   std::array<std::array<int, 2>, 3> triangleVertices(int tri) const;
+  /// The same corners as indices k·nx + i into heights().
+  std::array<size_t, 3> triangleVertexIndices(int tri) const {
+    const int cell = tri / 2;
+    const size_t v = size_t(cell / (nx_ - 1)) * size_t(nx_) + size_t(cell % (nx_ - 1)), up = size_t(nx_);
+    if (tri % 2 == 0) return {v, v + 1, v + up + 1};
+    return {v, v + up + 1, v + up};
+  }
 
  private:
   int nx_ = 0, nz_ = 0;

@@ -275,7 +275,7 @@ std::vector<double> vertexAreas(const Heightfield& hf) {
   std::vector<double> a(hf.heights().size(), 0.0);
   const double third = hf.dx() * hf.dz() / 2.0 / 3.0;
   for (int t = 0; t < hf.triangleCount(); ++t)
-    for (auto [i, k] : hf.triangleVertices(t)) a[size_t(k) * hf.nx() + i] += third;
+    for (size_t v : hf.triangleVertexIndices(t)) a[v] += third;
   return a;
 }
 
@@ -287,14 +287,6 @@ double terrainVolume(const Heightfield& hf, const std::vector<double>& areas, do
 }
 
 namespace {
-
-// The vertex indices (k·nx + i) of a triangle's corners, in the order of triangleVertices.
-std::array<size_t, 3> cornerIndices(const Heightfield& hf, int tri) {
-  const int cells = hf.nx() - 1, cell = tri / 2;
-  const size_t v = size_t(cell / cells) * size_t(hf.nx()) + size_t(cell % cells), up = size_t(hf.nx());
-  if (tri % 2 == 0) return {v, v + 1, v + up + 1};
-  return {v, v + up + 1, v + up};
-}
 
 // depositOnTriangle on the corners idx.
 void depositOnCorners(std::vector<double>& h, const std::vector<double>& areas, std::array<size_t, 3> idx,
@@ -330,7 +322,7 @@ void depositOnCorners(std::vector<double>& h, const std::vector<double>& areas, 
 
 void depositOnTriangle(Heightfield& hf, const std::vector<double>& areas, int tri, double volume) {
   if (volume == 0.0) return;
-  depositOnCorners(hf.heights(), areas, cornerIndices(hf, tri), volume);
+  depositOnCorners(hf.heights(), areas, hf.triangleVertexIndices(tri), volume);
 }
 
 std::vector<int> applyTerrainChange(Heightfield& hf, const std::vector<double>& areas,
@@ -367,7 +359,7 @@ std::vector<int> applyTerrainChange(Heightfield& hf, const std::vector<double>& 
       const double v = acc.volume[size_t(t)];
       if (v == 0.0) continue;
       acc.volume[size_t(t)] = 0.0;
-      const std::array<size_t, 3> idx = cornerIndices(hf, t);
+      const std::array<size_t, 3> idx = hf.triangleVertexIndices(t);
       const std::array<double, 3> was = {h[idx[0]], h[idx[1]], h[idx[2]]};
       depositOnCorners(h, areas, idx, v);
       for (int a = 0; a < 3; ++a)

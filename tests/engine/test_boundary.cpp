@@ -11,6 +11,15 @@
 
 using namespace scour;
 
+TEST_CASE("a triangle's vertex indices are its corners (i, k) as k·nx + i", "[terrain]") {
+  const Heightfield hf(7, 5, 0.1, 0.2);
+  for (int t = 0; t < hf.triangleCount(); ++t) {
+    const auto ik = hf.triangleVertices(t);
+    const auto idx = hf.triangleVertexIndices(t);
+    for (int a = 0; a < 3; ++a) CHECK(idx[size_t(a)] == size_t(ik[size_t(a)][1]) * 7 + size_t(ik[size_t(a)][0]));
+  }
+}
+
 TEST_CASE("heightfield height and normal are those of the triangle under the point", "[terrain]") {
   // A plane h = 0.3 x − 0.2 z + 1 is reproduced exactly, with its normal.
   Heightfield hf(9, 7, 0.5, 0.25, -1.0, 2.0);
