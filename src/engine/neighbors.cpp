@@ -152,20 +152,26 @@ void NeighborLists::fill(size_t n, Gather&& gather) {
 
 void NeighborLists::build(const Grid& grid, const std::vector<Vec3f>& x,
                           const std::vector<Vec3f>& y, const std::vector<uint32_t>& start,
-                          const std::vector<uint32_t>& sorted, float r, bool self) {
+                          const std::vector<uint32_t>& sorted, float r, bool self,
+                          std::vector<Vec3f>& inCellOrder) {
   const float r2 = r * r;
+  inCellOrder.resize(sorted.size());
+#pragma omp parallel for schedule(static)
+  for (size_t k = 0; k < sorted.size(); ++k) inCellOrder[k] = y[sorted[k]];
+  const Vec3f* ys = inCellOrder.data();
   fill(x.size(), [&](size_t i, std::vector<uint32_t>& chunk) {
     const Vec3f xi = x[i];
     grid.forEachCandidateRange(xi, start, [&](uint32_t b, uint32_t e) {
       // Without a branch: every candidate is written, and the end moves past it when it is a
       // neighbor (about half of them are: a branch on it mispredicted that often).
       const size_t at = chunk.size();
+      if (chunk.capacity() < at + (e - b)) chunk.reserve(2 * (at + (e - b)));
       chunk.resize(at + (e - b));
       uint32_t* out = chunk.data() + at;
       for (uint32_t k = b; k < e; ++k) {
         const uint32_t j = sorted[k];
         *out = j;
-        out += ((xi - y[j]).squaredNorm() < r2) & !(self && j == i);
+        out += ((xi - ys[k]).squaredNorm() < r2) & !(self && j == i);
       }
       chunk.resize(size_t(out - chunk.data()));
     });
@@ -273,7 +279,7 @@ void Neighborhood::buildFluid(const std::vector<Vec3f>& x, float h, NeighborSear
     return;
   }
   grid_.build(x, h);
-  fluid_.build(grid_, x, x, grid_.start(), grid_.sorted(), h, true);
+  fluid_.build(grid_, x, x, grid_.start(), grid_.sorted(), h, true, inCellOrder_);
   gridStale_ = false;
 }
 
@@ -286,7 +292,7 @@ void Neighborhood::buildBoundary(const std::vector<Vec3f>& fluid,
     return;
   }
   grid_.binOther(boundary, boundaryStart_, boundarySorted_);
-  boundary_.build(grid_, fluid, boundary, boundaryStart_, boundarySorted_, h, false);
+  boundary_.build(grid_, fluid, boundary, boundaryStart_, boundarySorted_, h, false, inCellOrder_);
 }
 
 const Grid& Neighborhood::placementGrid(const std::vector<Vec3f>& x, float h) {
@@ -301,7 +307,8 @@ const Grid& Neighborhood::rebuildGrid(const std::vector<Vec3f>& x, float h) {
 
 size_t Neighborhood::bytes() const {
   return grid_.bytes() + fluidTree_.bytes() + boundaryTree_.bytes() + fluid_.bytes() +
-         boundary_.bytes() + (boundaryStart_.capacity() + boundarySorted_.capacity()) * sizeof(uint32_t);
+         boundary_.bytes() + (boundaryStart_.capacity() + boundarySorted_.capacity()) * sizeof(uint32_t) +
+         inCellOrder_.capacity() * sizeof(Vec3f);
 }
 
 }  // namespace scour

@@ -123,10 +123,17 @@ class KdTree {
 class NeighborLists {
  public:
   /// Neighbors j ≠ i of each x[i] among `x` (self = true) or among the points binned in
-  /// (start, sorted) with positions y, within radius r.
+  /// (start, sorted) with positions y, within radius r. `inCellOrder` is scratch: y copied in the
+  /// order of `sorted`, so the candidates of a row of cells are read one after the other.
   void build(const Grid& grid, const std::vector<Vec3f>& x, const std::vector<Vec3f>& y,
              const std::vector<uint32_t>& start, const std::vector<uint32_t>& sorted, float r,
-             bool self);
+             bool self, std::vector<Vec3f>& inCellOrder);
+  void build(const Grid& grid, const std::vector<Vec3f>& x, const std::vector<Vec3f>& y,
+             const std::vector<uint32_t>& start, const std::vector<uint32_t>& sorted, float r,
+             bool self) {
+    std::vector<Vec3f> scratch;
+    build(grid, x, y, start, sorted, r, self, scratch);
+  }
   /// The same sets from a kd-tree over y (= tree.points()), each list in ascending index.
   void build(const KdTree& tree, const std::vector<Vec3f>& x, float r, bool self);
 
@@ -188,6 +195,7 @@ class Neighborhood {
   KdTree fluidTree_, boundaryTree_;
   NeighborLists fluid_, boundary_;
   std::vector<uint32_t> boundaryStart_, boundarySorted_;  ///< the boundary particles binned
+  std::vector<Vec3f> inCellOrder_;  ///< the build's scratch (NeighborLists::build)
 };
 
 /// A fixed partition of [0, n) into `parts` ranges, independent of the thread count.
