@@ -142,13 +142,14 @@ double depositFlux(const SedimentConstants& k, double cd, double dy, double r) {
 }
 
 // Per-thread lists of (boundary particle, volume) for contiguous particle blocks; replayed in
-// thread order they are in particle order, whatever the thread count. Each volume goes to the
-// triangles its boundary particle stands for.
+// thread order they are in particle order, whatever the thread count. Each volume goes to its
+// boundary particle's sum, which the terrain pass spreads over the triangles it stands for.
 using BoundaryVolumes = std::vector<std::vector<std::pair<uint32_t, double>>>;
 
 void replay(const BoundaryVolumes& lists, const BoundaryParticles& b, TerrainAccumulator& acc) {
+  if (acc.particle.size() < b.size()) acc.particle.resize(b.size(), 0.0);
   for (const auto& l : lists)
-    for (auto [j, v] : l) b.spread(j, v, [&](int tri, double part) { acc.add(tri, part); });
+    for (auto [j, v] : l) acc.addParticle(j, v);
 }
 
 }  // namespace
@@ -378,13 +379,15 @@ void depositOnTriangle(Heightfield& hf, const std::vector<double>& areas, int tr
 }
 
 std::vector<int> applyTerrainChange(Heightfield& hf, const std::vector<double>& areas,
-                                    TerrainAccumulator& acc) {
+                                    TerrainAccumulator& acc, double threshold) {
   const int cells = hf.nx() - 1, rows = hf.nz() - 1;
   if (acc.vertexMark.size() != hf.heights().size()) acc.vertexMark.assign(hf.heights().size(), 0u), acc.epoch = 0;
   if (++acc.epoch == 0) std::fill(acc.vertexMark.begin(), acc.vertexMark.end(), 0u), acc.epoch = 1;
   const uint32_t epoch = acc.epoch;
-  // Each cell row's span of touched triangles, and where its changed vertices go (at most 3 for
-  // each triangle touched in it).
+  // A triangle is applied once its volume would move it by `threshold` on average.
+  const double least = threshold * 0.5 * hf.dx() * hf.dz();
+  // Each cell row's span of touched triangles, and where its changed vertices and its waiting
+  // triangles go (at most 3 and 1 for each triangle touched in it).
   const int perRow = 2 * cells;
   std::vector<int>& start = acc.rowStart;
   std::vector<int>& lo = acc.rowLo;
@@ -402,15 +405,23 @@ std::vector<int> applyTerrainChange(Heightfield& hf, const std::vector<double>& 
     if (hi[size_t(k)] >= 0) live.push_back(k);
   }
   std::vector<int>& changedAt = acc.changedAt;
+  std::vector<int>& waiting = acc.waiting;
   changedAt.assign(3 * acc.touched.size(), -1);
+  waiting.assign(acc.touched.size(), -1);
   // A row's triangles in ascending order: its span of the accumulator, read in place.
   auto applyRow = [&](int k) {
     int* out = changedAt.data() + 3 * size_t(start[size_t(k)]);
+    int* wait = waiting.data() + size_t(start[size_t(k)]);
     std::vector<double>& h = hf.heights();
     for (int t = lo[size_t(k)]; t <= hi[size_t(k)]; ++t) {
       const double v = acc.volume[size_t(t)];
-      if (v == 0.0) continue;
+      if (std::abs(v) < least || v == 0.0) {
+        if (v != 0.0) *wait++ = t;
+        else acc.listed[size_t(t)] = 0;
+        continue;
+      }
       acc.volume[size_t(t)] = 0.0;
+      acc.listed[size_t(t)] = 0;
       const std::array<size_t, 3> idx = hf.triangleVertexIndices(t);
       const std::array<double, 3> was = {h[idx[0]], h[idx[1]], h[idx[2]]};
       depositOnCorners(h, areas, idx, v);
@@ -431,7 +442,10 @@ std::vector<int> applyTerrainChange(Heightfield& hf, const std::vector<double>& 
   std::vector<int> moved;
   for (int v : changedAt)
     if (v >= 0) moved.push_back(v);
+  // What waits, row by row in ascending order: the front of the next step's list.
   acc.touched.clear();
+  for (int t : waiting)
+    if (t >= 0) acc.touched.push_back(t);
   return moved;
 }
 

@@ -62,21 +62,57 @@ struct SedimentConstants {
   std::vector<float> hindranceTable;
 };
 
-/// Volume exchanged per triangle this step: + deposited, − eroded [m³].
+/// A triangle's exchanged volume goes into its heights once it would move them by at least this
+/// many Δs on average (model.md, "the terrain takes its change in steps of 10⁻⁴ Δs"); until then
+/// it waits in the accumulator, and the soil budget counts it as terrain.
+constexpr double kTerrainApplyOverSpacing = 1e-4;
+
+/// Volume exchanged with the terrain: + deposited, − eroded [m³]. A step's exchanges are summed
+/// per boundary particle (addParticle), then spread over the triangles each particle stands for
+/// (spread); a triangle's sum waits there until applyTerrainChange applies it.
 struct TerrainAccumulator {
-  std::vector<double> volume;   ///< per triangle
-  std::vector<int> touched;     ///< triangles with a non-zero entry, in first-touch order
+  std::vector<double> volume;   ///< per triangle, not yet applied to the heights
+  /// Triangles with an entry: those left waiting by the last applyTerrainChange in ascending
+  /// order, then the ones touched since, in first-touch order. Each once.
+  std::vector<int> touched;
+  std::vector<uint8_t> listed;  ///< per triangle: 1 when in `touched`
+  std::vector<double> particle;     ///< per boundary particle: this step's exchange
+  std::vector<uint32_t> particles;  ///< boundary particles with an entry, in first-touch order
   /// Per vertex: == epoch when applyTerrainChange changed its height this step.
   std::vector<uint32_t> vertexMark;
   uint32_t epoch = 0;
   /// applyTerrainChange's scratch (per cell row: the touched count and span), kept for its memory.
-  std::vector<int> rowStart, rowLo, rowHi, changedAt;
+  std::vector<int> rowStart, rowLo, rowHi, changedAt, waiting;
   void resize(int triangles, size_t vertices) {
-    volume.assign(size_t(triangles), 0.0), vertexMark.assign(vertices, 0u), epoch = 0;
+    volume.assign(size_t(triangles), 0.0), listed.assign(size_t(triangles), 0);
+    touched.clear(), particle.clear(), particles.clear();
+    vertexMark.assign(vertices, 0u), epoch = 0;
   }
   void add(int tri, double v) {
-    if (volume[size_t(tri)] == 0.0) touched.push_back(tri);
+    if (!listed[size_t(tri)]) listed[size_t(tri)] = 1, touched.push_back(tri);
     volume[size_t(tri)] += v;
+  }
+  /// Adds v to boundary particle j's sum for this step (`particle` grows to hold j).
+  void addParticle(uint32_t j, double v) {
+    if (j >= particle.size()) particle.resize(size_t(j) + 1, 0.0);
+    if (particle[j] == 0.0) particles.push_back(j);
+    particle[j] += v;
+  }
+  /// Moves each boundary particle's sum onto its triangles (BoundaryParticles::spread), in
+  /// first-touch order, and clears the sums.
+  void spread(const BoundaryParticles& b) {
+    for (uint32_t j : particles) {
+      const double v = particle[j];
+      particle[j] = 0.0;
+      if (v != 0.0) b.spread(j, v, [&](int tri, double part) { add(tri, part); });
+    }
+    particles.clear();
+  }
+  /// The volume waiting in the triangles, summed in `touched` order [m³].
+  double waitingVolume() const {
+    double s = 0.0;
+    for (int t : touched) s += volume[size_t(t)];
+    return s;
   }
   /// Whether vertex v (k·nx + i) moved in the last applyTerrainChange.
   bool moved(int v) const { return vertexMark[size_t(v)] == epoch; }
@@ -103,13 +139,14 @@ struct SedimentWorkspace {
   SedimentDefects defects;
 };
 
-/// Step 1 (fluid–fluid and fluid–boundary transfer) of the sediment work; adds deposits to acc.
+/// Step 1 (fluid–fluid and fluid–boundary transfer) of the sediment work; adds deposits to the
+/// boundary particles' sums in acc.
 void transferSediment(const SedimentConstants& k, const SedimentEffects& fx,
                       const NeighborLists& nbrs, const NeighborLists& bnbrs,
                       const BoundaryParticles& b, double dt, Fluid& f, TerrainAccumulator& acc,
                       SedimentWorkspace& ws);
 
-/// Step 2: erosion by shear stress; subtracts eroded volumes from acc.
+/// Step 2: erosion by shear stress; subtracts eroded volumes from the boundary particles' sums.
 void erode(const SedimentConstants& k, const NeighborLists& bnbrs, const BoundaryParticles& b,
            double dt, Fluid& f, TerrainAccumulator& acc);
 
@@ -125,12 +162,15 @@ double terrainVolume(const Heightfield& hf, const std::vector<double>& areas, do
 /// Σ Δh_v A_v = V to rounding.
 void depositOnTriangle(Heightfield& hf, const std::vector<double>& areas, int tri, double volume);
 
-/// Step 3: applies and clears the accumulator. The triangles of one cell row go in ascending
+/// Step 3: applies the triangles whose volume would move them by at least `threshold` [m] on
+/// average (|V| ≥ threshold · A_t; 0 applies every one) and clears them; the others stay, in
+/// ascending order, at the front of acc.touched. The triangles of one cell row go in ascending
 /// order; the rows run in two rounds, the even rows then the odd ones, each round in parallel
 /// (two rows of a round share no vertex), so the result is the same at any thread count. Marks
 /// the vertices whose height changed (acc.moved) and returns them, each once, in an order that
-/// depends on the touched triangles alone.
+/// depends on the touched triangles alone. Call acc.spread first: the boundary particles' sums
+/// are not read here.
 std::vector<int> applyTerrainChange(Heightfield& hf, const std::vector<double>& areas,
-                                    TerrainAccumulator& acc);
+                                    TerrainAccumulator& acc, double threshold = 0.0);
 
 }  // namespace scour

@@ -238,7 +238,8 @@ void World::sedimentWork() {
   if (sfx.erosion) timed(Pass::kErosion, [&] { erode(sediment_, neighbors_.boundary(), boundary_, dt_, fluid_, accumulator_); });
   if (sfx.erosion || sfx.deposition) {
     timed(Pass::kTerrain, [&] {
-      const std::vector<int> moved = applyTerrainChange(terrain_, vertexArea_, accumulator_);
+      accumulator_.spread(boundary_);
+      const std::vector<int> moved = applyTerrainChange(terrain_, vertexArea_, accumulator_, kTerrainApplyOverSpacing * params_.spacing);
       if (!moved.empty()) BoundarySampler::follow(terrain_, accumulator_.vertexMark, accumulator_.epoch, boundary_);
       wall_.follow(terrain_, moved);
     });

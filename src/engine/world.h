@@ -219,9 +219,13 @@ class World {
 
   /// A budget further than this from its initial value stops the run (relative).
   static constexpr double kSoilTolerance = 1e-6;
-  /// The soil budget now (the terrain part is summed over every vertex).
+  /// The soil budget now (the terrain part is summed over every vertex, and counts the volume
+  /// waiting for its triangle).
   SoilBudget soilBudget() const;
-  /// Height change of every vertex since the start [m].
+  /// Volume exchanged with the terrain but not yet in its heights (below
+  /// kTerrainApplyOverSpacing on its triangle), + deposited [m³].
+  double terrainWaiting() const { return accumulator_.waitingVolume(); }
+  /// Height change of every vertex since the start [m] (without the waiting volume).
   std::vector<double> heightChange() const;
   const Heightfield& initialTerrain() const { return initialTerrain_; }
   /// What the naive advection (sediment.advection = naive_gradient) made or destroyed since the

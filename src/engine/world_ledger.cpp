@@ -23,7 +23,8 @@ double World::mechanicalEnergy() const {
 
 SoilBudget World::soilBudget() const {
   SoilBudget s;
-  s.terrain = terrainVolume(terrain_, vertexArea_, terrainReference_);
+  // The volume waiting in the accumulator for its triangles is terrain already.
+  s.terrain = terrainVolume(terrain_, vertexArea_, terrainReference_) + accumulator_.waitingVolume();
   for (double v : fluid_.sed) s.suspended += v;
   s.removed = ledger_.removedSediment;
   s.initial = ledger_.initialSoil;

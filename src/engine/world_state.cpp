@@ -71,8 +71,9 @@ constexpr uint32_t kStateTag = 0x444C5257;  // "WRLD"
 // Version 2 adds the sediment defects (naive advection), version 3 the last density rate (the
 // next Δt's bound), version 4 the count of terrain contacts, version 5 the blocks of cells the
 // boundary particles stand for; older states load with none (each particle stands for part of
-// its triangle, as those builds sampled).
-constexpr uint32_t kStateVersion = 5;
+// its triangle, as those builds sampled). Version 6 adds the volumes waiting in the terrain
+// accumulator (below kTerrainApplyOverSpacing); older states wait for none.
+constexpr uint32_t kStateVersion = 6;
 
 }  // namespace
 
@@ -134,6 +135,9 @@ void World::saveState(std::ostream& o) const {
   put(o, time_), put(o, dt_), put(o, step_), put(o, supply_.nextId);
   ledger_.save(o);
   put(o, densityRate_);
+  std::vector<double> waiting;
+  for (int t : accumulator_.touched) waiting.push_back(accumulator_.volume[size_t(t)]);
+  putVec(o, accumulator_.touched), putVec(o, waiting);
 }
 
 void World::loadState(std::istream& in) {
@@ -191,6 +195,18 @@ void World::loadState(std::istream& in) {
   ledger.load(in, version);
   densityRate_ = 0;
   if (version >= 3) get(in, densityRate_, "density rate");
+  std::vector<int> waitingAt;
+  std::vector<double> waiting;
+  if (version >= 6) {
+    getVec(in, waitingAt, "waiting terrain volumes"), getVec(in, waiting, "waiting terrain volumes", waitingAt.size());
+    std::vector<uint8_t> seen(size_t(terrain_.triangleCount()), 0);
+    for (size_t e = 0; e < waitingAt.size(); ++e) {
+      const int t = waitingAt[e];
+      if (t < 0 || t >= terrain_.triangleCount() || seen[size_t(t)] || !std::isfinite(waiting[e]))
+        throw std::runtime_error("state is corrupt (waiting terrain volumes)");
+      seen[size_t(t)] = 1;
+    }
+  }
   f.scratch.clear();
   fluid_ = std::move(f);
   vhat_ = std::move(vhat);
@@ -198,6 +214,8 @@ void World::loadState(std::istream& in) {
   wall_ = wallSurfaceFor(terrain_, params_);
   boundary_ = std::move(b);
   sampler_.setActiveTiles(std::move(tiles));
+  accumulator_.resize(terrain_.triangleCount(), terrain_.heights().size());
+  for (size_t e = 0; e < waitingAt.size(); ++e) accumulator_.add(waitingAt[e], waiting[e]);
   ledger.initialSoil = ledger_.initialSoil;
   ledger_ = ledger;
   ledger_.energy = mechanicalEnergy();

@@ -5,6 +5,8 @@
 #include <omp.h>
 
 #include <algorithm>
+#include <cmath>
+#include <cstring>
 #include <memory>
 #include <sstream>
 
@@ -61,7 +63,8 @@ TEST_CASE("spacing sampling: the canyon's soil budget closes, the same at 1 and 
   CHECK(s.suspended > 0);
   CHECK(s.relativeError() < 1e-12);
   CHECK(run(1, 150) == two);
-  // A saved state resumes onto the same steps.
+  // A saved state resumes onto the same steps, the volumes waiting for their triangles with it.
+  REQUIRE(a->terrainWaiting() != 0.0);
   std::stringstream state;
   a->saveState(state);
   SceneSpec spec = presetSpec("canyon", 0.03);
@@ -70,7 +73,42 @@ TEST_CASE("spacing sampling: the canyon's soil budget closes, the same at 1 and 
   fx.erosion = fx.settling = fx.diffusion = fx.deposition = true;
   World resumed(buildScene(spec).desc);
   resumed.loadState(state);
+  CHECK(resumed.terrainWaiting() == a->terrainWaiting());
+  CHECK(resumed.soilBudget().terrain == a->soilBudget().terrain);
   for (int k = 0; k < 30; ++k) a->step(), resumed.step();
   CHECK(resumed.stateHash() == a->stateHash());
+  // The waiting volumes end the state: (n, n triangles), (n, n volumes). A volume that is not
+  // finite or a triangle outside the terrain is refused, and the world keeps its state.
+  std::stringstream again;
+  a->saveState(again);
+  const std::string bytes = again.str();
+  auto u64At = [&](size_t at) {
+    uint64_t v = 0;
+    std::memcpy(&v, bytes.data() + at, sizeof v);
+    return v;
+  };
+  size_t n = 1;
+  while (n < bytes.size() / 12 && !(u64At(bytes.size() - 8 * n - 8) == n && u64At(bytes.size() - 12 * n - 16) == n)) ++n;
+  REQUIRE(u64At(bytes.size() - 8 * n - 8) == n);
+  auto refuse = [&](const std::string& damaged) {
+    std::stringstream in(damaged);
+    const uint64_t before = resumed.stateHash();
+    try {
+      resumed.loadState(in);
+    } catch (const std::runtime_error& e) {
+      CHECK(resumed.stateHash() == before);
+      return std::string(e.what());
+    }
+    return std::string("accepted");
+  };
+  std::string nan = bytes;
+  const double bad = std::nan("");
+  std::memcpy(nan.data() + nan.size() - sizeof(double), &bad, sizeof bad);
+  CHECK(refuse(nan) == "state is corrupt (waiting terrain volumes)");
+  std::string outside = bytes;
+  const int32_t nowhere = -1;
+  std::memcpy(outside.data() + outside.size() - 12 * n - 8, &nowhere, sizeof nowhere);
+  CHECK(refuse(outside) == "state is corrupt (waiting terrain volumes)");
+  CHECK(refuse(bytes) == "accepted");
   omp_set_num_threads(omp_get_num_procs());
 }

@@ -1,6 +1,7 @@
 // Erosion (eqs. 9–10) and the terrain update (eqs. 21–22) in isolation.
 #include <catch2/catch.hpp>
 #include <omp.h>
+#include <algorithm>
 #include <cmath>
 
 #include "engine/sediment.h"
@@ -45,8 +46,15 @@ TEST_CASE("a particle moving over one boundary particle erodes L_b² K_ε (τ �
   const double mass = 3e-4 * s.p.k_eps * (tau - s.p.tau_c) * dt;
   const double volume = mass / s.p.sediment_density;
   CHECK(s.f.sed[0] == Approx(volume).epsilon(1e-12));
-  CHECK(acc.volume[7] == -s.f.sed[0]);  // exactly what the fluid gained
+  // Exactly what the fluid gained: first the boundary particle's sum, then its triangle's.
+  CHECK(acc.particle[0] == -s.f.sed[0]);
+  CHECK(acc.particles == std::vector<uint32_t>{0});
+  CHECK(acc.touched.empty());
+  acc.spread(s.b);
+  CHECK(acc.volume[7] == -s.f.sed[0]);
   CHECK(acc.touched == std::vector<int>{7});
+  CHECK(acc.particles.empty());
+  CHECK(acc.particle[0] == 0.0);
 }
 
 TEST_CASE("no erosion below the critical shear stress", "[erosion]") {
@@ -60,6 +68,8 @@ TEST_CASE("no erosion below the critical shear stress", "[erosion]") {
   acc.resize(16, 16);
   erode(k, s.bn, s.b, 1e-3, s.f, acc);
   CHECK(s.f.sed[0] == 0.0);
+  CHECK(acc.particles.empty());
+  acc.spread(s.b);
   CHECK(acc.touched.empty());
 }
 
@@ -71,7 +81,34 @@ TEST_CASE("erosion stops at C_max", "[erosion]") {
   acc.resize(16, 16);
   erode(k, s.bn, s.b, 1e-2, s.f, acc);
   CHECK(s.f.sed[0] == Approx(s.p.c_max * k.volume).epsilon(1e-14));
-  CHECK(acc.volume[7] == -s.f.sed[0]);
+  CHECK(acc.particle[0] == -s.f.sed[0]);
+}
+
+TEST_CASE("a block's boundary particle spreads its step's sum over the block's triangles by area", "[terrain]") {
+  // A boundary particle standing for the 2 × 3 cells from cell (1, 2) of a grid 5 cells wide:
+  // its 12 triangles get a twelfth each of what the step gave it, the others nothing.
+  BoundaryParticles b;
+  b.cellsX = 5;
+  b.x.push_back(Vec3f::Zero()), b.triangle.push_back(2 * (2 * 5 + 1)), b.area.push_back(1.0);
+  b.bary.emplace_back(0.0f, 0.0f), b.patch.push_back(2 * 5 + 1), b.extent.push_back(uint8_t(2 | 3 << 4));
+  TerrainAccumulator acc;
+  acc.resize(2 * 5 * 6, 36);
+  acc.addParticle(0, 3e-6);
+  acc.addParticle(0, -1.2e-6);
+  acc.addParticle(0, 0.6e-6);
+  CHECK(acc.particles == std::vector<uint32_t>{0});
+  const double sum = 3e-6 + -1.2e-6 + 0.6e-6;
+  CHECK(acc.particle[0] == sum);
+  acc.spread(b);
+  std::vector<int> expected;
+  for (int k = 2; k < 5; ++k)
+    for (int i = 1; i < 3; ++i) expected.push_back(2 * (k * 5 + i)), expected.push_back(2 * (k * 5 + i) + 1);
+  CHECK(acc.touched == expected);
+  for (int t = 0; t < 60; ++t) {
+    const bool inBlock = std::find(expected.begin(), expected.end(), t) != expected.end();
+    CHECK(acc.volume[size_t(t)] == (inBlock ? sum / 12.0 : 0.0));
+  }
+  CHECK(acc.waitingVolume() == Approx(sum).epsilon(1e-15));
 }
 
 TEST_CASE("a deposit raises the lowest vertex first and keeps the volume exact", "[terrain]") {
@@ -148,6 +185,45 @@ TEST_CASE("applyTerrainChange applies every triangle and reports the moved verti
   CHECK(acc.touched.empty());
   CHECK(acc.volume[40] == 0.0);
   CHECK(acc.volume[41] == 0.0);
+}
+
+TEST_CASE("a triangle's volume waits until it would move the triangle by the threshold", "[terrain]") {
+  // Cells of 0.1 m: a triangle of 5e-3 m². At a threshold of 1e-4 m a triangle takes its volume
+  // once |V| ≥ 5e-7 m³; below that the volume waits, and the budget counts it as terrain.
+  Heightfield hf(10, 10, 0.1, 0.1);
+  auto areas = vertexAreas(hf);
+  TerrainAccumulator acc;
+  acc.resize(hf.triangleCount(), hf.heights().size());
+  const double threshold = 1e-4, least = threshold * 0.5 * 0.1 * 0.1;
+  acc.add(70, 0.6 * least);
+  acc.add(12, -1.5 * least);
+  acc.add(31, 0.99 * least);
+  acc.add(5, 1.0 * least);
+  const Heightfield before = hf;
+  auto moved = applyTerrainChange(hf, areas, acc, threshold);
+  // 12 and 5 are applied; 31 and 70 wait, in ascending order, their volumes kept to the bit.
+  CHECK(acc.touched == std::vector<int>{31, 70});
+  CHECK(acc.volume[31] == 0.99 * least);
+  CHECK(acc.volume[70] == 0.6 * least);
+  CHECK(acc.volume[12] == 0.0);
+  CHECK(acc.volume[5] == 0.0);
+  CHECK(terrainVolume(hf, areas, 0.0) == Approx(-0.5 * least).epsilon(1e-12));
+  CHECK(terrainVolume(hf, areas, 0.0) + acc.waitingVolume() == Approx(1.09 * least).epsilon(1e-12));
+  for (int v : hf.triangleVertexIndices(31)) CHECK(hf.heights()[v] == before.heights()[v]);
+  CHECK(!moved.empty());
+  // More on 70 carries it over: applied whole, the waiting volume with this step's.
+  acc.add(70, 0.5 * least);
+  acc.add(3, 0.1 * least);  // new, below: waits behind 31 in ascending order
+  const double v70 = 0.6 * least + 0.5 * least;
+  moved = applyTerrainChange(hf, areas, acc, threshold);
+  CHECK(acc.touched == std::vector<int>{3, 31});
+  CHECK(acc.volume[70] == 0.0);
+  CHECK(terrainVolume(hf, areas, 0.0) == Approx(-0.5 * least + v70).epsilon(1e-12));
+  CHECK(moved.size() == 3);  // 70's three corners, on flat ground
+  // At threshold 0 every triangle is applied and nothing waits.
+  applyTerrainChange(hf, areas, acc, 0.0);
+  CHECK(acc.touched.empty());
+  CHECK(terrainVolume(hf, areas, 0.0) == Approx(1.69 * least).epsilon(1e-12));
 }
 
 TEST_CASE("applyTerrainChange gives the same terrain at any thread count", "[terrain][determinism]") {

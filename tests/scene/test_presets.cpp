@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <fstream>
 #include <set>
+#include <string>
 
 #include "scene/assets.h"
 #include "scene/builtin_scenes.h"
@@ -60,8 +61,13 @@ TEST_CASE("the paper's scenes run and erode at a small scale", "[presets][slow]"
     double moved = 0;
     for (int k = 0; k < 150; ++k) w.step();  // throws InvariantViolation on any breach
     for (double d : w.heightChange()) moved = std::max(moved, std::abs(d));
-    CHECK(moved > 0);  // the terrain has been eroded somewhere
-    CHECK(w.soilBudget().relativeError() < World::kSoilTolerance);
+    // The terrain has been eroded: soil has left it (the budget counts what waits for its
+    // triangle as terrain), and except under the light rain the heights have moved too (rain's
+    // 150 steps leave every triangle below the 10⁻⁴ Δs it takes at once).
+    const SoilBudget soil = w.soilBudget();
+    CHECK(soil.initial - soil.terrain > 0);
+    if (std::string(name) != "rain") CHECK(moved > 0);
+    CHECK(soil.relativeError() < World::kSoilTolerance);
     CHECK(w.invariants().max_penetration_over_ds <= s.spec.params.max_penetration_over_ds);
   }
 }
