@@ -326,6 +326,18 @@ void runPanel(const Snapshot& snap, Actions& actions, PanelState& state) {
   const Frame& frame = snap.frame;
   ImGui::TextWrapped("t = %.3f s, step %ld, %zu particles, %.1f steps/s", frame.time, frame.step,
                      frame.particles(), snap.stepsPerSecond);
+  // The geologic clock (model.md, "two clocks"): the speed-up, both times, the guard.
+  if (const ParamInfo* speedUp = findParam("erosion.morphological_factor")) parameterRow(snap, *speedUp, actions);
+  ImGui::TextWrapped("water %.3f s, bed %.4g s (N = %.4g%s)", frame.time, snap.morphTime, snap.factorNow,
+                     snap.factorNow < snap.factor ? ", in spin-up" : "");
+  const double bound = snap.params.max_bed_step;
+  if (snap.guard.lowered > 0)
+    ImGui::TextWrapped("bed guard: lowered the speed-up %ld time%s, last at t = %.3f s from %.4g to %.4g",
+                       snap.guard.lowered, snap.guard.lowered == 1 ? "" : "s", snap.guard.lastAt,
+                       snap.guard.lastFrom, snap.factor);
+  else
+    ImGui::TextWrapped("bed guard: quiet, the bed moved %.2g Δs in the last step (bound %.2g)",
+                       snap.bedStep, bound);
   snapshotsSection(snap, actions);  // whole world states to go back to (worker.h)
 }
 

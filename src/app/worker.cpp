@@ -269,10 +269,10 @@ void SimulationWorker::save(const cmd::Save& sv) {
       break;
     }
     case K::kCheckpoint: writeCheckpoint(sv.path, spec(), *world_); break;
-    case K::kHeightPng: writeHeightPng16(sv.path, world_->terrain()); break;
-    case K::kHeightRaw: writeHeightRaw(sv.path, world_->terrain()); break;
-    case K::kMesh: writeTerrainObj(sv.path, world_->terrain()); break;
-    case K::kErosionMap: writeErosionPng(sv.path, world_->terrain(), world_->heightChange()); break;
+    case K::kHeightPng: writeHeightPng16(sv.path, world_->settledTerrain()); break;
+    case K::kHeightRaw: writeHeightRaw(sv.path, world_->settledTerrain()); break;
+    case K::kMesh: writeTerrainObj(sv.path, world_->settledTerrain()); break;
+    case K::kErosionMap: writeErosionPng(sv.path, world_->settledTerrain(), world_->heightChange()); break;
   }
   notice_ = "wrote " + sv.path;
 }
@@ -380,6 +380,11 @@ void SimulationWorker::publish(double stepsPerSecond) {
   s.painted = world_->painted();
   s.removedBySinks = world_->removedBySinks();
   s.rollbacks = rollbacks_;
+  s.morphTime = world_->morphologicalTime();
+  s.factor = world_->morphologicalFactor();
+  s.factorNow = world_->factorNow();
+  s.bedStep = world_->lastBedStep();
+  s.guard = world_->bedGuard();
   s.snapshots.clear();
   for (const Kept& k : kept_) s.snapshots.push_back(k.info);
   frames_.publish();

@@ -95,6 +95,10 @@ struct Snapshot {
   long removedBySinks = 0;        ///< particles the sinks took out since the start
   std::vector<SnapshotInfo> snapshots;  ///< kept states, oldest first
   long rollbacks = 0;  ///< automatic rollbacks after a broken invariant, since the start
+  /// The geologic clock: the bed's time [s], the factor in effect and the one the next step
+  /// uses (1 in the spin-up), the bed guard's record and the last step's bed change [Δs].
+  double morphTime = 0, factor = 1, factorNow = 1, bedStep = 0;
+  Ledger::BedGuard guard;
 };
 
 class SimulationWorker {

@@ -81,6 +81,7 @@ struct RunOptions {
   bool headless = false;
   long steps = 0;
   double time = 0;
+  double wallTime = 0;  ///< > 0: stop once this many wall seconds have passed
   std::string out;
   int threads = 0;
   long particlesEvery = 0;
@@ -145,14 +146,26 @@ int runScene(const RunOptions& o) {
   const bool tty = ::isatty(2);
   // Progress from where this run starts (a resumed one: the checkpoint's step or time).
   const long firstStep = world->steps();
-  const bool bySteps = o.steps > 0;
-  RunProgress pace(bySteps ? double(firstStep) : world->time(), bySteps ? double(o.steps) : o.time);
+  const bool bySteps = o.steps > 0, byTime = o.time > 0;
+  // Progress towards the first of the ends given; with --wall-time alone, towards it.
+  RunProgress pace(bySteps ? double(firstStep) : byTime ? world->time() : 0.0,
+                   bySteps ? double(o.steps) : byTime ? o.time : o.wallTime);
+  auto wallSince = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(); };
   auto progress = [&](bool last) {
-    const double done = pace.fraction(), eta = pace.etaSeconds();
-    char line[200], etaText[32] = "ETA -";
+    double done = pace.fraction(), eta = pace.etaSeconds();
+    if (o.wallTime > 0) {
+      // Whichever end comes first.
+      const double left = std::max(o.wallTime - wallSince(), 0.0);
+      done = std::max(done, 1.0 - left / o.wallTime);
+      eta = eta >= 0 ? std::min(eta, left) : left;
+    }
+    char line[240], etaText[32] = "ETA -", bed[64] = "";
     if (eta >= 0) std::snprintf(etaText, sizeof etaText, "ETA %.0f s", eta);
-    std::snprintf(line, sizeof line, "step %ld  t = %.4g s  particles %zu  %3.0f%%  %s",
-                  world->steps(), world->time(), world->fluid().size(), 100 * done,
+    // The bed's clock beside the water's once it runs apart (the geologic speed-up).
+    if (world->morphologicalTime() != world->time())
+      std::snprintf(bed, sizeof bed, " (bed %.4g s, N = %.4g)", world->morphologicalTime(), world->factorNow());
+    std::snprintf(line, sizeof line, "step %ld  t = %.4g s%s  particles %zu  %3.0f%%  %s",
+                  world->steps(), world->time(), bed, world->fluid().size(), 100 * done,
                   last ? "" : etaText);
     if (tty) {
       const int width = 30, filled = int(done * width + 0.5);
@@ -166,13 +179,26 @@ int runScene(const RunOptions& o) {
   RunOutputs outputs(dir, {o.particlesEvery, o.metricsEvery, o.checkpointEvery, o.mesh}, scene);
   outputs.start(*world);
   if (frames) frames->write(makeFrame(*world), (dir / RunOutputs::frameName(world->steps())).string());
+  std::string stoppedBy = bySteps ? "steps" : "time";
+  long guardSeen = world->bedGuard().lowered;
   auto more = [&] {
-    return o.steps > 0 ? world->steps() < o.steps : world->time() < o.time - 1e-12;
+    if (bySteps && world->steps() >= o.steps) return stoppedBy = "steps", false;
+    if (byTime && world->time() >= o.time - 1e-12) return stoppedBy = "time", false;
+    if (o.wallTime > 0 && wallSince() >= o.wallTime) return stoppedBy = "wall_time", false;
+    return true;
   };
   // Whatever a step (or an output after it) throws, the run still ends with its summary and the
   // documented code.
   const RunEnd end = runWhile(*world, more, [&](const StepRecord& record) {
     outputs.afterStep(*world, record);
+    const Ledger::BedGuard& guard = world->bedGuard();
+    if (guard.lowered != guardSeen) {
+      guardSeen = guard.lowered;
+      std::cerr << (tty ? "\r" : "") << "step " << world->steps() << " (t = " << world->time()
+                << " s): the bed moved " << record.stats.bed_step_ds << " Δs in a step (bound "
+                << world->params().max_bed_step << "): geologic speed-up lowered from "
+                << guard.lastFrom << " to " << world->morphologicalFactor() << "\n";
+    }
     if (frames && world->steps() % o.framesEvery == 0)
       frames->write(makeFrame(*world), (dir / RunOutputs::frameName(world->steps())).string());
     auto now = std::chrono::steady_clock::now();
@@ -186,7 +212,7 @@ int runScene(const RunOptions& o) {
   });
   if (tty) progress(true);
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  outputs.finish(*world, end, wall);
+  outputs.finish(*world, end, wall, stoppedBy);
   if (!end.ok()) {
     std::cerr << "error: " << end.describe() << "\n"
               << "summary written to " << (dir / "summary.json").string() << "\n";
@@ -194,9 +220,11 @@ int runScene(const RunOptions& o) {
   }
   std::cout << "ran " << world->steps() - firstStep << " steps";
   if (firstStep > 0) std::cout << " (from step " << firstStep << " to " << world->steps() << ")";
-  std::cout << " (" << world->time() << " s simulated, "
-            << world->fluid().size() << " particles) in " << wall << " s; outputs in "
-            << dir.string() << "\n";
+  std::cout << " (" << world->time() << " s simulated";
+  if (world->morphologicalTime() != world->time()) std::cout << ", " << world->morphologicalTime() << " s of bed time";
+  std::cout << ", " << world->fluid().size() << " particles) in " << wall << " s";
+  if (stoppedBy == "wall_time") std::cout << " (the wall-time budget)";
+  std::cout << "; outputs in " << dir.string() << "\n";
   return kExitOk;
 }
 
@@ -211,6 +239,9 @@ Command addRunCommand(CLI::App& app) {
   auto* steps = c->add_option("--steps", o->steps, "Number of steps")->check(kPositive);
   auto* time = c->add_option("--time", o->time, "Simulated seconds")->check(kPositive);
   steps->excludes(time);
+  auto* wallTime = c->add_option("--wall-time", o->wallTime,
+                                 "End cleanly after this many wall seconds (alone, or with --steps/--time: whichever comes first)")
+                       ->check(kPositive);
   c->add_option("--out", o->out, "Output directory")->required();
   c->add_option("--threads", o->threads, "OpenMP threads (default: all cores)")->check(kPositive);
   c->add_option("--particles-every", o->particlesEvery, "Write particles_<step>.ply every K steps")
@@ -230,11 +261,11 @@ Command addRunCommand(CLI::App& app) {
                                "Continue from a checkpoint (--steps/--time: the total to reach)");
   resume->excludes(scene);
   resume->excludes(sets);
-  return [o, steps, time, scene, resume] {
+  return [o, steps, time, wallTime, scene, resume] {
     if (scene->count() == 0 && resume->count() == 0)
       throw InputError("run: a scene (name or file) or --resume FILE is required");
-    if (steps->count() == 0 && time->count() == 0)
-      throw InputError("run: one of --steps or --time is required");
+    if (steps->count() == 0 && time->count() == 0 && wallTime->count() == 0)
+      throw InputError("run: one of --steps, --time or --wall-time is required");
     if (resume->count() > 0 && o->scale != 1.0)
       throw InputError("--scale: a resumed run keeps the checkpoint's scene; drop --scale");
     return runScene(*o);

@@ -21,12 +21,13 @@ Frame makeFrame(const World& w) {
   f.support = float(p.support());
   f.mass = float(p.particleMass());
   f.rest_density = float(p.rest_density);
-  const Heightfield& hf = w.terrain();
+  const Heightfield hf = w.settledTerrain();
   f.nx = hf.nx(), f.nz = hf.nz();
   f.dx = hf.dx(), f.dz = hf.dz(), f.x0 = hf.x0(), f.z0 = hf.z0();
   f.height.assign(hf.heights().begin(), hf.heights().end());
-  const std::vector<double> change = w.heightChange();
-  f.change.assign(change.begin(), change.end());
+  const std::vector<double>& h0 = w.initialTerrain().heights();
+  f.change.resize(h0.size());
+  for (size_t i = 0; i < h0.size(); ++i) f.change[i] = float(hf.heights()[i] - h0[i]);
   return f;
 }
 

@@ -97,6 +97,17 @@ struct SimParams {
   /// second for 1 mm grains, out of its range; the default gives v_s ≈ 0.1 m/s [Pa·s].
   double settling_viscosity = 0.036;
 
+  // --- the geologic clock (model.md, "two clocks") ---
+  /// N, the morphological acceleration factor (Delft3D's MorFac): the bed changes by N times a
+  /// step's net exchange with the water, so it runs in morphological time ∫ N dt; 1 is the bed
+  /// in hydraulic time [-].
+  double morphological_factor = 1.0;
+  /// Hydraulic time before N acts (Delft3D's MorStt): the flow settles first [s].
+  double morphological_spinup = 0.0;
+  /// The bed-change guard: the most the bed may move anywhere in one step, over Δs. A step whose
+  /// exchange times N would move it more halves N until it does not (never below 1) [-].
+  double max_bed_step = 0.01;
+
   // --- bookkeeping ---
   /// Steps between reorders of the particle arrays along the Z-order curve [-].
   int reorder_every = 16;

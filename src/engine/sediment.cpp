@@ -189,15 +189,16 @@ void transferSediment(const SedimentConstants& k, const SedimentEffects& fx,
   // than it holds and every acceptor from passing C_max. Only when some factor is below 1 (rare:
   // a nearly empty donor or a nearly saturated acceptor) does the scaled pass run again; the
   // unscaled pass then equals it to the bit, so the result does not depend on which ran.
-  BoundaryVolumes deposits;
+  BoundaryVolumes& deposits = ws.exchanges;
   bool limited = false;
   auto exchange = [&](bool scaled) {
 #pragma omp parallel reduction(|| : limited)
     {
       const int threads = omp_get_num_threads(), t = omp_get_thread_num();
 #pragma omp single
-      deposits.assign(size_t(threads), {});
+      deposits.resize(size_t(threads));
       auto& mine = deposits[size_t(t)];
+      mine.clear();
       const size_t lo = blockBegin(n, size_t(threads), size_t(t));
       const size_t hi = blockBegin(n, size_t(threads), size_t(t) + 1);
       for (size_t i = lo; i < hi; ++i) {
@@ -278,7 +279,7 @@ void transferSediment(const SedimentConstants& k, const SedimentEffects& fx,
 }
 
 void erode(const SedimentConstants& k, const NeighborLists& bnbrs, const BoundaryParticles& b,
-           double dt, Fluid& f, TerrainAccumulator& acc) {
+           double dt, Fluid& f, TerrainAccumulator& acc, SedimentWorkspace& ws) {
   const size_t n = f.size();
   const double room = k.c_max * k.volume;
   const bool sqrtLaw = k.shear_n == 0.5;
@@ -289,13 +290,14 @@ void erode(const SedimentConstants& k, const NeighborLists& bnbrs, const Boundar
     if (tau <= k.tau_c) return 0.0;
     return area * k.k_eps * (tau - k.tau_c) * dt / k.rho_s;
   };
-  BoundaryVolumes eroded;
+  BoundaryVolumes& eroded = ws.exchanges;
 #pragma omp parallel
   {
     const int threads = omp_get_num_threads(), t = omp_get_thread_num();
 #pragma omp single
     eroded.resize(size_t(threads));
     auto& mine = eroded[size_t(t)];
+    mine.clear();
     const size_t lo = blockBegin(n, size_t(threads), size_t(t));
     const size_t hi = blockBegin(n, size_t(threads), size_t(t) + 1);
     for (size_t i = lo; i < hi; ++i) {

@@ -26,6 +26,8 @@
 // Fluid-side updates are parallel gathers; the per-triangle sums are accumulated serially in
 // particle order, so the result is the same at any thread count.
 
+#include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <vector>
 
@@ -98,15 +100,40 @@ struct TerrainAccumulator {
     if (particle[j] == 0.0) particles.push_back(j);
     particle[j] += v;
   }
-  /// Moves each boundary particle's sum onto its triangles (BoundaryParticles::spread), in
-  /// first-touch order, and clears the sums.
-  void spread(const BoundaryParticles& b) {
+  /// Moves each boundary particle's sum, times the morphological factor, onto its triangles
+  /// (BoundaryParticles::spread), in first-touch order, and clears the sums. Adds to `excess`
+  /// what the factor added beyond the exchange, Σ (N v − v) [m³] (0 at N = 1).
+  void spread(const BoundaryParticles& b, double factor, double& excess) {
     for (uint32_t j : particles) {
       const double v = particle[j];
       particle[j] = 0.0;
-      if (v != 0.0) b.spread(j, v, [&](int tri, double part) { add(tri, part); });
+      if (v == 0.0) continue;
+      const double bed = v * factor;
+      excess += bed - v;
+      b.spread(j, bed, [&](int tri, double part) { add(tri, part); });
     }
     particles.clear();
+  }
+  void spread(const BoundaryParticles& b) {
+    double excess = 0.0;
+    spread(b, 1.0, excess);
+  }
+  /// How fast the bed moves under this step's sums (before spread): the largest |v_j| / L_b² [m]
+  /// and the area of the boundary particles whose |v_j| / L_b² is at least `fast` [m²] beside
+  /// the area of all with an exchange [m²].
+  struct BedMotion {
+    double peak = 0.0, fastArea = 0.0, area = 0.0;
+  };
+  BedMotion bedMotion(const BoundaryParticles& b, double fast) const {
+    BedMotion m;
+    for (uint32_t j : particles) {
+      if (particle[j] == 0.0) continue;
+      const double dh = std::abs(particle[j]) / b.area[j];
+      m.peak = std::max(m.peak, dh);
+      m.area += b.area[j];
+      if (dh >= fast) m.fastArea += b.area[j];
+    }
+    return m;
   }
   /// The volume waiting in the triangles, summed in `touched` order [m³].
   double waitingVolume() const {
@@ -135,6 +162,9 @@ struct SedimentWorkspace {
   std::vector<float> conc, hind;
   std::vector<Scales> scale;
   std::vector<double> delta;
+  /// Per thread, the (boundary particle, volume) exchanges of its block of fluid particles, in
+  /// particle order (deposition, then erosion); kept so their memory is reused.
+  std::vector<std::vector<std::pair<uint32_t, double>>> exchanges;
   /// The last call's defects (naive advection only; zero otherwise).
   SedimentDefects defects;
 };
@@ -148,7 +178,12 @@ void transferSediment(const SedimentConstants& k, const SedimentEffects& fx,
 
 /// Step 2: erosion by shear stress; subtracts eroded volumes from the boundary particles' sums.
 void erode(const SedimentConstants& k, const NeighborLists& bnbrs, const BoundaryParticles& b,
-           double dt, Fluid& f, TerrainAccumulator& acc);
+           double dt, Fluid& f, TerrainAccumulator& acc, SedimentWorkspace& ws);
+inline void erode(const SedimentConstants& k, const NeighborLists& bnbrs, const BoundaryParticles& b,
+                  double dt, Fluid& f, TerrainAccumulator& acc) {
+  SedimentWorkspace ws;
+  erode(k, bnbrs, b, dt, f, acc, ws);
+}
 
 /// Per-vertex area weights of the soil volume: A_v = Σ_{t ∋ v} A_t / 3 (projected areas), so that
 /// Σ_v h_v A_v is exactly the volume under the piecewise-linear surface.

@@ -101,6 +101,7 @@ World::World(WorldDesc d)
   require(terrain_.dx() > 0 && terrain_.dz() > 0, "terrain: cell size must be positive");
   for (double h : terrain_.heights()) require(std::isfinite(h), "terrain: heights must be finite");
   initialTerrain_ = terrain_;
+  factor_ = params_.morphological_factor;
   wall_ = wallSurfaceFor(terrain_, params_);
   vertexArea_ = vertexAreas(terrain_);
   terrainReference_ = terrain_.minHeight();
@@ -235,10 +236,25 @@ void World::sedimentWork() {
       }
     });
   }
-  if (sfx.erosion) timed(Pass::kErosion, [&] { erode(sediment_, neighbors_.boundary(), boundary_, dt_, fluid_, accumulator_); });
+  if (sfx.erosion) timed(Pass::kErosion, [&] { erode(sediment_, neighbors_.boundary(), boundary_, dt_, fluid_, accumulator_, sedimentWork_); });
   if (sfx.erosion || sfx.deposition) {
     timed(Pass::kTerrain, [&] {
-      accumulator_.spread(boundary_);
+      // The geologic clock (model.md, "two clocks"): the bed takes N times the step's exchange;
+      // the guard halves N until no boundary particle's bed moves more than the bound.
+      const double bound = params_.max_bed_step * params_.spacing;
+      const double peak = accumulator_.bedMotion(boundary_, INFINITY).peak;
+      if (stepFactor_ > 1 && stepFactor_ * peak > bound) {
+        const double was = stepFactor_;
+        while (stepFactor_ > 1 && stepFactor_ * peak > bound) stepFactor_ = std::max(1.0, 0.5 * stepFactor_);
+        factor_ = stepFactor_;
+        Ledger::BedGuard& g = ledger_.guard;
+        g.lowest = g.lowered == 0 ? stepFactor_ : std::min(g.lowest, stepFactor_);
+        ++g.lowered, g.lastAt = time_, g.lastFrom = was;
+      }
+      const auto motion = accumulator_.bedMotion(boundary_, 0.1 * bound / stepFactor_);
+      bedStep_ = stepFactor_ * motion.peak / params_.spacing;
+      bedFast_ = motion.area > 0 ? motion.fastArea / motion.area : 0.0;
+      accumulator_.spread(boundary_, stepFactor_, ledger_.morphological);
       const std::vector<int> moved = applyTerrainChange(terrain_, vertexArea_, accumulator_, kTerrainApplyOverSpacing * params_.spacing);
       if (!moved.empty()) BoundarySampler::follow(terrain_, accumulator_.vertexMark, accumulator_.epoch, boundary_);
       wall_.follow(terrain_, moved);
@@ -277,6 +293,8 @@ void World::setParams(const SimParams& q) {
     const std::string bad = checkRainWork(supply_.rain[r].rain, rainArea(supply_.rain[r].rain), q, at);
     require(bad.empty(), bad);
   }
+  // A new speed-up is the user's: it replaces what the bed guard had lowered it to.
+  if (q.morphological_factor != params_.morphological_factor) factor_ = q.morphological_factor;
   params_ = resolve(q);
   sph_ = SphConstants(params_);
   simulationBox();
@@ -286,6 +304,8 @@ void World::setParams(const SimParams& q) {
 
 StepStats World::step() {
   dt_ = chooseDt();
+  stepFactor_ = factorNow();
+  bedStep_ = bedFast_ = 0;
   const float half = float(0.5 * dt_), full = float(dt_);
   const size_t n0 = fluid_.size();
   if (effects_.fluid_motion) {
@@ -351,10 +371,15 @@ StepStats World::step() {
     });
   }
   sedimentWork();
+  morphTime_ += stepFactor_ * dt_;
   timed(Pass::kInvariants, [&] { checkInvariants(); });
   StepStats s;
   s.dt = dt_;
   s.time = time_;
+  s.morph_time = morphTime_;
+  s.factor = stepFactor_;
+  s.bed_step_ds = bedStep_;
+  s.bed_fast_fraction = bedFast_;
   s.step = step_;
   s.particles = n;
   float v2 = 0;

@@ -75,7 +75,10 @@ struct Effects {
 /// numerical form made (the naive advection, sediment.advection = naive_gradient; 0 otherwise).
 struct SoilBudget {
   double terrain = 0, suspended = 0, removed = 0, initial = 0, created = 0;
-  double total() const { return terrain + suspended + removed - created; }
+  /// What the morphological factor added to the terrain beyond the water's exchange, Σ (N − 1) ×
+  /// the net deposit of each step (negative where it eroded) [m³]; 0 at N = 1.
+  double morphological = 0;
+  double total() const { return terrain + suspended + removed - created - morphological; }
   double relativeError() const { return initial != 0 ? std::abs(total() - initial) / initial : 0; }
 };
 
@@ -115,6 +118,14 @@ struct Ledger {
   /// Particles put back onto the terrain's wall surface after the drift carried them through it
   /// (World::step): impacts faster than the penalty holds.
   long terrainContacts = 0;
+  /// SoilBudget::morphological: Σ (N v − v) over the boundary particles' net exchanges [m³].
+  double morphological = 0;
+  /// The bed-change guard's record: how often it lowered the factor, the lowest it set, and the
+  /// hydraulic time of the last time.
+  struct BedGuard {
+    long lowered = 0;
+    double lowest = 0, lastAt = 0, lastFrom = 0;  ///< lastFrom: the factor before the last
+  } guard;
 
   void save(std::ostream& out) const;
   /// `version`: of the world state being read (defects from version 2 on).
@@ -140,6 +151,11 @@ struct StepStats {
   double dt = 0, time = 0, max_speed = 0;
   size_t particles = 0;
   long step = 0;
+  /// The geologic clock: the bed's time ∫ N dt [s], the factor this step used (1 in the
+  /// spin-up), and how fast the bed moved: the largest change a boundary particle's bed made
+  /// [Δs], and the share of the exchanging bed (by area) that moved at least a tenth of the
+  /// guard's bound [-].
+  double morph_time = 0, factor = 1, bed_step_ds = 0, bed_fast_fraction = 0;
 };
 
 struct WorldDesc {
@@ -193,6 +209,16 @@ class World {
   const NeighborLists& neighbors() const { return neighbors_.fluid(); }
   const Domain& domain() const { return domain_; }
   double time() const { return time_; }
+  /// The bed's clock, ∫ N dt over the steps (model.md, "two clocks") [s].
+  double morphologicalTime() const { return morphTime_; }
+  /// The morphological factor in effect: erosion.morphological_factor, or less where the bed
+  /// guard lowered it (until the parameter is set again); the spin-up aside.
+  double morphologicalFactor() const { return factor_; }
+  /// The factor the next step uses: 1 in the spin-up, else morphologicalFactor().
+  double factorNow() const { return time_ >= params_.morphological_spinup ? factor_ : 1.0; }
+  const Ledger::BedGuard& bedGuard() const { return ledger_.guard; }
+  /// The most the last step moved the bed anywhere, over Δs (StepStats::bed_step_ds).
+  double lastBedStep() const { return bedStep_; }
   long steps() const { return step_; }
   double lastDt() const { return dt_; }
 
@@ -225,7 +251,12 @@ class World {
   /// Volume exchanged with the terrain but not yet in its heights (below
   /// kTerrainApplyOverSpacing on its triangle), + deposited [m³].
   double terrainWaiting() const { return accumulator_.waitingVolume(); }
-  /// Height change of every vertex since the start [m] (without the waiting volume).
+  /// The terrain with the waiting volumes settled onto their triangles (as they will be once they
+  /// reach the threshold): what every output shows, so a picture, an export or a height change
+  /// holds all the soil exchanged so far. The world's own terrain() lags it by at most
+  /// kTerrainApplyOverSpacing Δs per triangle.
+  Heightfield settledTerrain() const;
+  /// Height change of every vertex since the start, of settledTerrain() [m].
   std::vector<double> heightChange() const;
   const Heightfield& initialTerrain() const { return initialTerrain_; }
   /// What the naive advection (sediment.advection = naive_gradient) made or destroyed since the
@@ -299,6 +330,11 @@ class World {
   BoundaryParticles boundary_;
   double time_ = 0, dt_ = 0;
   long step_ = 0;
+  double morphTime_ = 0;  ///< ∫ N dt [s]
+  double factor_ = 1;     ///< the factor in effect (the guard may lower it)
+  double stepFactor_ = 1;  ///< the factor of the step under way
+  /// The last terrain pass's bed motion (StepStats), over Δs and as a share of the area.
+  double bedStep_ = 0, bedFast_ = 0;
   Ledger ledger_;
   /// max |dρ/dt|/ρ of the last continuity step [1/s]; 0 = none yet.
   double densityRate_ = 0;

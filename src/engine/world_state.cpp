@@ -71,8 +71,10 @@ constexpr uint32_t kStateTag = 0x444C5257;  // "WRLD"
 // Version 2 adds the sediment defects (naive advection), version 3 the last density rate (the
 // next Δt's bound), version 4 the count of terrain contacts, version 5 the blocks of cells the
 // boundary particles stand for; older states load with none (each particle stands for part of
-// its triangle, as those builds sampled). Version 6 adds the volumes waiting in the terrain
-// accumulator (below kTerrainApplyOverSpacing); older states wait for none.
+// its triangle, as those builds sampled). Version 6 adds the geologic clock (the bed's time, the
+// factor in effect, what the factor added to the soil budget, the bed guard's record) and the
+// volumes waiting in the terrain accumulator (below kTerrainApplyOverSpacing); older states load
+// at N = 1 with the bed's time equal to the water's, and wait for none.
 constexpr uint32_t kStateVersion = 6;
 
 }  // namespace
@@ -83,6 +85,7 @@ void Ledger::save(std::ostream& o) const {
   put(o, invariants);
   put(o, defects);
   put(o, terrainContacts);
+  put(o, morphological), put(o, guard);
 }
 
 void Ledger::load(std::istream& in, uint32_t version) {
@@ -94,6 +97,8 @@ void Ledger::load(std::istream& in, uint32_t version) {
   if (version >= 2) get(in, defects, "sediment defects");
   terrainContacts = 0;
   if (version >= 4) get(in, terrainContacts, "terrain contacts");
+  morphological = 0, guard = {};
+  if (version >= 6) get(in, morphological, "geologic clock"), get(in, guard, "geologic clock");
 }
 
 void Supply::saveProgress(std::ostream& o) const {
@@ -135,6 +140,7 @@ void World::saveState(std::ostream& o) const {
   put(o, time_), put(o, dt_), put(o, step_), put(o, supply_.nextId);
   ledger_.save(o);
   put(o, densityRate_);
+  put(o, morphTime_), put(o, factor_);
   std::vector<double> waiting;
   for (int t : accumulator_.touched) waiting.push_back(accumulator_.volume[size_t(t)]);
   putVec(o, accumulator_.touched), putVec(o, waiting);
@@ -197,7 +203,11 @@ void World::loadState(std::istream& in) {
   if (version >= 3) get(in, densityRate_, "density rate");
   std::vector<int> waitingAt;
   std::vector<double> waiting;
+  double morphTime = time_, factor = params_.morphological_factor;
   if (version >= 6) {
+    get(in, morphTime, "geologic clock"), get(in, factor, "geologic clock");
+    if (!std::isfinite(morphTime) || morphTime < 0 || !(factor >= 1 && factor <= 1e6))
+      throw std::runtime_error("state is corrupt (geologic clock)");
     getVec(in, waitingAt, "waiting terrain volumes"), getVec(in, waiting, "waiting terrain volumes", waitingAt.size());
     std::vector<uint8_t> seen(size_t(terrain_.triangleCount()), 0);
     for (size_t e = 0; e < waitingAt.size(); ++e) {
@@ -216,6 +226,7 @@ void World::loadState(std::istream& in) {
   sampler_.setActiveTiles(std::move(tiles));
   accumulator_.resize(terrain_.triangleCount(), terrain_.heights().size());
   for (size_t e = 0; e < waitingAt.size(); ++e) accumulator_.add(waitingAt[e], waiting[e]);
+  morphTime_ = morphTime, factor_ = factor;
   ledger.initialSoil = ledger_.initialSoil;
   ledger_ = ledger;
   ledger_.energy = mechanicalEnergy();

@@ -2,9 +2,12 @@
 
 #include <omp.h>
 
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <iomanip>
 
+#include "engine/sediment.h"
 #include "scene/checkpoint.h"
 #include "scene/output.h"
 #include "scene/scene_json.h"
@@ -36,23 +39,26 @@ RunOutputs::RunOutputs(std::filesystem::path dir, RunOutputOptions o, const Scen
     : dir_(std::move(dir)), options_(o), scene_(scene) {
   // One row every K steps (and at step 0), cumulative pass seconds.
   metrics_ << "step,time_s,dt_s,particles,max_speed_m_s,terrain_m3,suspended_m3,removed_m3,"
-              "soil_relative_error";
+              "soil_relative_error,morph_time_s,factor,bed_step_ds,morphological_m3";
   for (size_t p = 0; p < size_t(Pass::kCount); ++p) metrics_ << "," << passName(Pass(p)) << "_s";
   metrics_ << "\n";
 }
 
-void RunOutputs::metricsRow(const World& w, double dt, double maxSpeed) {
+void RunOutputs::metricsRow(const World& w, const StepStats& s) {
   const SoilBudget soil = w.soilBudget();
-  metrics_ << w.steps() << "," << std::setprecision(9) << w.time() << "," << dt << ","
-           << w.fluid().size() << "," << maxSpeed << "," << std::setprecision(15) << soil.terrain
-           << "," << soil.suspended << "," << soil.removed << "," << soil.relativeError()
-           << std::setprecision(6);
+  metrics_ << w.steps() << "," << std::setprecision(9) << w.time() << "," << s.dt << ","
+           << w.fluid().size() << "," << s.max_speed << "," << std::setprecision(15) << soil.terrain
+           << "," << soil.suspended << "," << soil.removed << "," << soil.relativeError() << ","
+           << std::setprecision(9) << w.morphologicalTime() << "," << s.factor << "," << s.bed_step_ds
+           << "," << std::setprecision(15) << soil.morphological << std::setprecision(6);
   for (size_t p = 0; p < size_t(Pass::kCount); ++p) metrics_ << "," << w.passSeconds()[p];
   metrics_ << "\n";
 }
 
 void RunOutputs::start(const World& w) {
-  metricsRow(w, 0.0, 0.0);
+  StepStats none;
+  none.factor = w.factorNow();
+  metricsRow(w, none);
   if (options_.particlesEvery > 0)
     writeParticlesPly(dir_ / numbered("particles_%06ld.ply", 0), w.fluid(),
                       w.params().particleVolume(), 0.0);
@@ -63,14 +69,14 @@ void RunOutputs::afterStep(const World& w, const StepRecord& r) {
   if (options_.particlesEvery > 0 && step % options_.particlesEvery == 0)
     writeParticlesPly(dir_ / numbered("particles_%06ld.ply", step), w.fluid(),
                       w.params().particleVolume(), w.time());
-  if (step % options_.metricsEvery == 0) metricsRow(w, r.stats.dt, r.stats.max_speed);
+  if (step % options_.metricsEvery == 0) metricsRow(w, r.stats);
   if (options_.checkpointEvery > 0 && step % options_.checkpointEvery == 0)
     writeCheckpoint((dir_ / numbered("checkpoint_%06ld.ckpt", step)).string(), scene_.spec, w);
 }
 
 // Heights now and their change since the start, with how to read them back.
 json RunOutputs::exports(const World& w) {
-  const Heightfield& hf = w.terrain();
+  const Heightfield hf = w.settledTerrain();
   auto [lo, hi] = writeHeightPng16(dir_ / "height.png", hf);
   writeHeightRaw(dir_ / "height.r32", hf);
   const double changeScale = writeErosionPng(dir_ / "erosion.png", hf, w.heightChange());
@@ -96,11 +102,32 @@ json RunOutputs::exports(const World& w) {
              "white: unchanged; red: erosion; blue: deposition; full colour at |dh| = scale_m"}}}};
 }
 
-json RunOutputs::finish(const World& w, const RunEnd& end, double wallSeconds) {
+namespace {
+
+// The settled terrain's change since the start: the deepest cut and the highest deposit, and the
+// volumes cut and deposited, Σ max(0, ∓Δh_v) A_v.
+json terrainChangeJson(const World& w) {
+  const std::vector<double> change = w.heightChange();
+  const std::vector<double> area = vertexAreas(w.initialTerrain());
+  double deepest = 0, highest = 0, eroded = 0, deposited = 0;
+  for (size_t v = 0; v < change.size(); ++v) {
+    deepest = std::max(deepest, -change[v]), highest = std::max(highest, change[v]);
+    (change[v] < 0 ? eroded : deposited) += std::abs(change[v]) * area[v];
+  }
+  return {{"max_erosion_m", deepest},
+          {"max_deposition_m", highest},
+          {"eroded_m3", eroded},
+          {"deposited_m3", deposited}};
+}
+
+}  // namespace
+
+json RunOutputs::finish(const World& w, const RunEnd& end, double wallSeconds, const std::string& stoppedBy) {
   writeAtomically(dir_ / "metrics.csv", [&](std::ostream& out) { out << metrics_.str(); });
   json summary;
   summary["status"] = end.statusName();
   if (!end.message.empty()) summary["error"] = end.message;
+  summary["stopped_by"] = end.ok() ? stoppedBy : std::string("error");
   summary["particles"] = w.fluid().size();
   summary["steps"] = w.steps();
   summary["sim_time_s"] = w.time();
@@ -115,10 +142,23 @@ json RunOutputs::finish(const World& w, const RunEnd& end, double wallSeconds) {
                            {"c_min", inv.c_min},
                            {"c_max", inv.c_max}};
   const SoilBudget soil = w.soilBudget();
+  const SimParams& p = w.params();
+  const Ledger::BedGuard& guard = w.bedGuard();
+  summary["clock"] = {{"factor", w.morphologicalFactor()},
+                      {"requested_factor", p.morphological_factor},
+                      {"spinup_s", p.morphological_spinup},
+                      {"hydraulic_s", w.time()},
+                      {"morphological_s", w.morphologicalTime()}};
+  summary["bed_guard"] = {{"bound_ds", p.max_bed_step},
+                          {"lowered", guard.lowered},
+                          {"lowest_factor", guard.lowered > 0 ? guard.lowest : w.morphologicalFactor()},
+                          {"last_at_s", guard.lastAt}};
+  summary["terrain_change"] = terrainChangeJson(w);
   summary["soil"] = {{"terrain_m3", soil.terrain},
                      {"suspended_m3", soil.suspended},
                      {"removed_m3", soil.removed},
                      {"initial_m3", soil.initial},
+                     {"morphological_m3", soil.morphological},
                      {"relative_error", soil.relativeError()},
                      {"worst_relative_error", inv.soil_relative_error},
                      {"reference_height_m", w.initialTerrain().minHeight()}};

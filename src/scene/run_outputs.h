@@ -31,14 +31,15 @@ class RunOutputs {
   /// After each step.
   void afterStep(const World& w, const StepRecord& r);
   /// At the end, however the run ended: metrics.csv, the terrain exports and summary.json
-  /// (its "status" is end.statusName(), its "error" the message). Returns the summary.
-  nlohmann::json finish(const World& w, const RunEnd& end, double wallSeconds);
+  /// (its "status" is end.statusName(), its "error" the message, its "stopped_by" `stoppedBy`
+  /// for a run that ended well: "steps", "time" or "wall_time"). Returns the summary.
+  nlohmann::json finish(const World& w, const RunEnd& end, double wallSeconds, const std::string& stoppedBy);
 
   /// "frame_000120.png": the name of a picture of step `step`.
   static std::string frameName(long step);
 
  private:
-  void metricsRow(const World& w, double dt, double maxSpeed);
+  void metricsRow(const World& w, const StepStats& s);
   nlohmann::json exports(const World& w);
 
   std::filesystem::path dir_;

@@ -50,6 +50,38 @@ assert all(len(r.split(",")) == len(head) for r in rows)
 assert float(rows[-1].split(",")[1]) == s["sim_time_s"] or abs(float(rows[-1].split(",")[1]) - s["sim_time_s"]) < 1e-8
 print("run outputs ok")
 PY
+# The geologic clock and the wall-time budget: a run that ends on --wall-time writes every output
+# and says why it stopped; the bed's clock is N times the water's after the spin-up, and the
+# ledger (with what the speed-up added) closes.
+"$scour" run default --scale 0.2 --wall-time 3 --steps 100000 --threads 2 --metrics-every 5 \
+  --set erosion.morphological_factor=50 --set erosion.morphological_spinup=0.002 --out "$tmp/clock" >/dev/null
+python3 - "$tmp/clock" <<'PY'
+import json, os, sys
+d = sys.argv[1]
+s = json.load(open(os.path.join(d, "summary.json")))
+assert s["status"] == "ok" and s["stopped_by"] == "wall_time", (s["status"], s["stopped_by"])
+assert 0 < s["steps"] < 100000 and s["wall_s"] >= 3, (s["steps"], s["wall_s"])
+c = s["clock"]
+assert c["factor"] == 50 and c["requested_factor"] == 50 and c["spinup_s"] == 0.002, c
+assert c["hydraulic_s"] == s["sim_time_s"]
+# At most one step of the spin-up runs at 1: T = 50 t − 49 (spin-up rounded up to a step).
+assert 50 * c["hydraulic_s"] - 49 * 0.004 <= c["morphological_s"] <= 50 * c["hydraulic_s"] - 49 * 0.002 + 1e-9, c
+g = s["bed_guard"]
+assert g["bound_ds"] == 0.01 and g["lowered"] == 0 and g["lowest_factor"] == 50, g
+t = s["terrain_change"]
+assert t["max_erosion_m"] > 0 and t["eroded_m3"] > 0 and t["max_deposition_m"] >= 0 and t["deposited_m3"] >= 0, t
+soil = s["soil"]
+assert soil["morphological_m3"] < 0 and soil["relative_error"] < 1e-12, soil
+for f in ["metrics.csv", "height.png", "height.r32", "erosion.png"]:
+    assert os.path.exists(os.path.join(d, f)), f
+assert not [f for f in os.listdir(d) if ".tmp" in f], os.listdir(d)
+rows = [r.split(",") for r in open(os.path.join(d, "metrics.csv")).read().splitlines()]
+head = rows[0]
+assert head[9:13] == ["morph_time_s", "factor", "bed_step_ds", "morphological_m3"], head
+last = dict(zip(head, rows[-1]))
+assert float(last["factor"]) == 50 and float(last["morph_time_s"]) > float(last["time_s"])
+print("clock outputs ok")
+PY
 "$scour" bench dambreak --steps 3 --warmup 1 --threads 1 --json > "$tmp/bench.json"
 python3 - "$tmp/bench.json" <<'PY'
 import json, sys

@@ -10,6 +10,7 @@
 #include <memory>
 #include <sstream>
 
+#include "engine/sediment.h"
 #include "scene/presets.h"
 
 using namespace scour;
@@ -65,6 +66,13 @@ TEST_CASE("spacing sampling: the canyon's soil budget closes, the same at 1 and 
   CHECK(run(1, 150) == two);
   // A saved state resumes onto the same steps, the volumes waiting for their triangles with it.
   REQUIRE(a->terrainWaiting() != 0.0);
+  // Outputs show the settled terrain: the waiting volumes in its heights, exactly.
+  const Heightfield settled = a->settledTerrain();
+  const std::vector<double> areas = vertexAreas(settled);
+  double settledVolume = 0;
+  for (size_t v = 0; v < areas.size(); ++v) settledVolume += (settled.heights()[v] - a->terrain().heights()[v]) * areas[v];
+  CHECK(settledVolume == Approx(a->terrainWaiting()).epsilon(1e-9));
+  CHECK(a->heightChange()[0] == settled.heights()[0] - a->initialTerrain().heights()[0]);
   std::stringstream state;
   a->saveState(state);
   SceneSpec spec = presetSpec("canyon", 0.03);

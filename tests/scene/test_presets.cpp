@@ -6,7 +6,6 @@
 #include <algorithm>
 #include <fstream>
 #include <set>
-#include <string>
 
 #include "scene/assets.h"
 #include "scene/builtin_scenes.h"
@@ -61,13 +60,8 @@ TEST_CASE("the paper's scenes run and erode at a small scale", "[presets][slow]"
     double moved = 0;
     for (int k = 0; k < 150; ++k) w.step();  // throws InvariantViolation on any breach
     for (double d : w.heightChange()) moved = std::max(moved, std::abs(d));
-    // The terrain has been eroded: soil has left it (the budget counts what waits for its
-    // triangle as terrain), and except under the light rain the heights have moved too (rain's
-    // 150 steps leave every triangle below the 10⁻⁴ Δs it takes at once).
-    const SoilBudget soil = w.soilBudget();
-    CHECK(soil.initial - soil.terrain > 0);
-    if (std::string(name) != "rain") CHECK(moved > 0);
-    CHECK(soil.relativeError() < World::kSoilTolerance);
+    CHECK(moved > 0);  // the terrain has been eroded somewhere
+    CHECK(w.soilBudget().relativeError() < World::kSoilTolerance);
     CHECK(w.invariants().max_penetration_over_ds <= s.spec.params.max_penetration_over_ds);
   }
 }
@@ -128,7 +122,7 @@ TEST_CASE("every built-in scene is its file in assets/scenes/, read by the scene
   CHECK(presets == presetList().size());
   CHECK(presets == 11);
   CHECK(stress == stressSceneNames().size());
-  CHECK(stress == 21);
+  CHECK(stress == 22);
   REQUIRE_THROWS_WITH(presetSpec("nosuch"), Catch::StartsWith("unknown scene 'nosuch' (built-in scenes: block, canyon,") &&
                                                 Catch::Contains("stress-cliffs"));
 }

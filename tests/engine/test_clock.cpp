@@ -1,0 +1,142 @@
+// The geologic clock (model.md, "two clocks"): the bed takes N times each step's net exchange, the
+// bed's time is ∫ N dt, the soil ledger (terrain + suspended + removed − what the factor added)
+// closes to rounding at any N, across a change of N and a resume, and the bed guard lowers N
+// where the bed would move too fast.
+#include <catch2/catch.hpp>
+
+#include <sstream>
+
+#include "scene/presets.h"
+
+using namespace scour;
+
+namespace {
+
+Scene river(double factor, double spinup = 0.0, double bound = 1.0) {
+  SceneSpec spec = presetSpec("default", 0.3);
+  spec.params.morphological_factor = factor;
+  spec.params.morphological_spinup = spinup;
+  spec.params.max_bed_step = bound;
+  return buildScene(spec);
+}
+
+// Steps w, checking the ledger after every step; returns the worst relative error.
+double stepChecked(World& w, int steps) {
+  double worst = 0;
+  for (int k = 0; k < steps; ++k) {
+    w.step();
+    worst = std::max(worst, w.soilBudget().relativeError());
+  }
+  return worst;
+}
+
+}  // namespace
+
+TEST_CASE("at N = 1 the bed's clock is the water's and the factor adds nothing", "[clock][budget]") {
+  Scene s = river(1.0);
+  REQUIRE(s.desc.effects.erosion);
+  World w(s.desc);
+  CHECK(stepChecked(w, 60) < 1e-12);
+  CHECK(w.morphologicalTime() == w.time());
+  CHECK(w.soilBudget().morphological == 0.0);
+  CHECK(w.bedGuard().lowered == 0);
+}
+
+TEST_CASE("at N = 100 the bed takes 100 times the water's exchange and the ledger closes", "[clock][budget]") {
+  const double n = 100;
+  Scene s = river(n);
+  World w(s.desc);
+  const SoilBudget start = w.soilBudget();
+  REQUIRE(start.suspended == 0.0);
+  const double worst = stepChecked(w, 150);
+  const SoilBudget b = w.soilBudget();
+  INFO("terrain " << b.terrain << ", suspended " << b.suspended << ", removed " << b.removed
+                  << ", added by the factor " << b.morphological << "; worst error " << worst);
+  CHECK(worst < 1e-12);
+  // All the soil in the water came from the bed: the bed lost N times as much.
+  const double taken = b.suspended + b.removed;
+  REQUIRE(taken > 0);
+  CHECK(start.terrain - b.terrain == Approx(n * taken).epsilon(1e-9));
+  CHECK(b.morphological == Approx(-(n - 1) * taken).epsilon(1e-9));
+  CHECK(w.morphologicalTime() == Approx(n * w.time()).epsilon(1e-12));
+  CHECK(w.bedGuard().lowered == 0);
+}
+
+TEST_CASE("the speed-up waits for its spin-up, and the bed's clock is the sum of N dt", "[clock]") {
+  const double n = 10, spinup = 0.02;
+  Scene s = river(n, spinup);
+  World w(s.desc);
+  double expected = 0;
+  int slow = 0, fast = 0;
+  for (int k = 0; k < 40; ++k) {
+    const StepStats st = w.step();
+    const bool spun = st.time - st.dt >= spinup;
+    CHECK(st.factor == (spun ? n : 1.0));
+    (spun ? fast : slow) += 1;
+    expected += st.factor * st.dt;
+    CHECK(st.morph_time == expected);
+  }
+  CHECK(slow > 0);
+  CHECK(fast > 0);
+  CHECK(w.morphologicalTime() == expected);
+}
+
+TEST_CASE("a change of N mid-run and a resume keep the ledger closed, and the resume is bit for bit",
+          "[clock][budget][checkpoint]") {
+  Scene s = river(1.0);
+  World w(s.desc);
+  CHECK(stepChecked(w, 40) < 1e-12);
+  SimParams p = w.params();
+  p.morphological_factor = 50;
+  w.setParams(p);
+  CHECK(w.morphologicalFactor() == 50);
+  CHECK(stepChecked(w, 40) < 1e-12);
+  CHECK(w.soilBudget().morphological != 0.0);
+  std::stringstream state;
+  w.saveState(state);
+  // The resumed world is built from the scene as it is now (the checkpoint records the edit).
+  Scene now = river(50);
+  World resumed(now.desc);
+  resumed.loadState(state);
+  CHECK(resumed.morphologicalTime() == w.morphologicalTime());
+  CHECK(resumed.soilBudget().morphological == w.soilBudget().morphological);
+  CHECK(resumed.soilBudget().relativeError() == w.soilBudget().relativeError());
+  for (int k = 0; k < 25; ++k) w.step(), resumed.step();
+  CHECK(resumed.stateHash() == w.stateHash());
+  CHECK(resumed.morphologicalTime() == w.morphologicalTime());
+  CHECK(resumed.soilBudget().relativeError() < 1e-12);
+  // Back to 1: the ledger keeps what the factor added and still closes.
+  p.morphological_factor = 1;
+  w.setParams(p);
+  const double added = w.soilBudget().morphological;
+  CHECK(stepChecked(w, 20) < 1e-12);
+  CHECK(w.soilBudget().morphological == added);
+}
+
+TEST_CASE("the bed guard halves N until no step moves the bed more than its bound", "[clock]") {
+  // N = 10⁴ on a river that cuts about 1e-6 Δs a step: 10⁻² Δs a step, a hundred times the
+  // bound of 10⁻⁴ Δs.
+  const double n = 1e4, bound = 1e-4;
+  Scene s = river(n, 0.0, bound);
+  World w(s.desc);
+  double worst = 0;
+  for (int k = 0; k < 80; ++k) {
+    const StepStats st = w.step();
+    if (st.factor > 1) CHECK(st.bed_step_ds <= bound * (1 + 1e-12));
+    CHECK(st.bed_fast_fraction >= 0.0);
+    CHECK(st.bed_fast_fraction <= 1.0);
+    worst = std::max(worst, w.soilBudget().relativeError());
+  }
+  const Ledger::BedGuard& g = w.bedGuard();
+  INFO("lowered " << g.lowered << " times, to " << g.lowest << "; now " << w.morphologicalFactor());
+  CHECK(g.lowered >= 1);
+  CHECK(w.morphologicalFactor() < n);
+  CHECK(g.lowest == w.morphologicalFactor());
+  CHECK(g.lastFrom > g.lowest);
+  CHECK(worst < 1e-12);
+  // Setting the parameter again is the user's word: the factor is theirs until the guard acts.
+  SimParams p = w.params();
+  p.morphological_factor = 20;
+  w.setParams(p);
+  CHECK(w.morphologicalFactor() == 20);
+}
