@@ -128,7 +128,8 @@ int study(const StudyCommandOptions& o) {
   so.log = [](const std::string& line) { std::cerr << "study: " << line << "\n"; };
   std::vector<StudyRow> rows = runEngineStudies(so);
   std::vector<std::string> studies = {"spacing", "time_step", "eos", "neighbor_search",
-                                      "advection", "diffusion_form"};
+                                      "advection", "diffusion_form", "morphological_factor",
+                                      "erosion_spacing"};
   if (!o.noRender) {
     for (StudyRow& r : renderGridStudy(o.quick, so.log)) rows.push_back(std::move(r));
     studies.push_back("render_grid");

@@ -9,7 +9,9 @@
 #include <limits>
 #include <map>
 #include <sstream>
+#include <tuple>
 
+#include "engine/sediment.h"
 #include "scene/presets.h"
 #include "study/measures.h"
 
@@ -195,7 +197,104 @@ StudyRow neighborSearch(const std::string& choice, SceneSpec spec, long steps, N
   return r;
 }
 
-std::string fmt(double v, int precision = 3) {
+// --- the bed: what erosion made of the terrain --------------------------------------------------
+
+// The settled height change of every vertex since the start, and the volume cut, Σ max(0, −Δh) A_v.
+struct BedChange {
+  std::vector<double> dh;
+  double eroded = 0;
+};
+BedChange bedChange(const World& w) {
+  BedChange b;
+  b.dh = w.heightChange();
+  const std::vector<double> area = vertexAreas(w.initialTerrain());
+  for (size_t v = 0; v < b.dh.size(); ++v)
+    if (b.dh[v] < 0) b.eroded -= b.dh[v] * area[v];
+  return b;
+}
+// RMS of a − b over the vertices (b empty: of a).
+double rms(const std::vector<double>& a, const std::vector<double>& b = {}) {
+  double s = 0;
+  for (size_t v = 0; v < a.size(); ++v) {
+    const double d = a[v] - (b.empty() ? 0.0 : b[v]);
+    s += d * d;
+  }
+  return a.empty() ? 0.0 : std::sqrt(s / double(a.size()));
+}
+
+std::string fmt(double v, int precision = 3);
+
+// The geologic clock (model.md, "two clocks"): the default river run to the same bed time at
+// growing N, after the same spin-up at N = 1 (the same state at its end, bit for bit). Error: the
+// RMS difference of the height change since the spin-up against N = 1's, over N = 1's RMS height
+// change since the spin-up; cost: wall seconds per second of bed time.
+std::vector<StudyRow> morphologicalFactor(bool quick) {
+  SceneSpec base = presetSpec("default", quick ? 0.25 : 1.0);
+  const double spinup = quick ? 0.5 : 1.0, bedTime = quick ? 0.5 : 2.0;
+  base.params.morphological_spinup = spinup;
+  std::vector<StudyRow> rows;
+  BedChange reference;
+  for (double n : quick ? std::vector<double>{1, 10, 100} : std::vector<double>{1, 10, 100, 1000}) {
+    SceneSpec s = base;
+    s.params.morphological_factor = n;
+    World w(buildScene(s).desc);
+    std::vector<double> atSpinup;
+    const Run run = drive(w, [&] { return w.morphologicalTime() >= spinup + bedTime - 1e-12; }, [&] {
+      if (atSpinup.empty() && w.time() >= spinup) atSpinup = w.heightChange();
+    });
+    BedChange c = bedChange(w);
+    if (atSpinup.size() == c.dh.size())
+      for (size_t v = 0; v < c.dh.size(); ++v) c.dh[v] -= atSpinup[v];
+    if (n == 1) reference = c;
+    // What the guard allowed, when it stepped in.
+    const std::string choice = "N = " + fmt(n) +
+                               (w.bedGuard().lowered > 0 ? " (guard: " + fmt(w.morphologicalFactor()) + ")" : "");
+    StudyRow r = row("morphological_factor", "bed change (RMS)", choice, rms(c.dh, reference.dh) / rms(reference.dh),
+                     run, w);
+    r.simulated_seconds = w.morphologicalTime();
+    r.cost = run.wall / r.simulated_seconds;
+    rows.push_back(r);
+  }
+  return rows;
+}
+
+// The carved terrain against resolution: the default river at four particle spacings for the
+// same water time, against the finest: the eroded volume, and the RMS height change.
+std::vector<StudyRow> erosionSpacing(bool quick) {
+  const double t = quick ? 0.3 : 1.0;
+  const std::vector<double> scales = quick ? std::vector<double>{0.125, 0.25, 0.5, 1.0}
+                                           : std::vector<double>{0.25, 0.5, 1.0, 2.0};
+  std::vector<std::tuple<std::string, Run, BedChange, double, long>> runs;
+  for (double sc : scales) {
+    const SceneSpec s = presetSpec("default", sc);
+    World w(buildScene(s).desc);
+    const Run run = drive(w, [&] { return w.time() >= t - 1e-12; }, [] {});
+    runs.emplace_back("Δs = " + fmt(s.params.spacing * 100) + " cm", run, bedChange(w), w.time(),
+                      long(w.fluid().size()));
+  }
+  const BedChange& finest = std::get<2>(runs.back());
+  std::vector<StudyRow> rows;
+  for (const auto& [choice, run, c, time, particles] : runs) {
+    for (int k = 0; k < 2; ++k) {
+      StudyRow r;
+      r.study = "erosion_spacing";
+      r.reference = k == 0 ? "eroded volume" : "bed change (RMS)";
+      r.choice = choice;
+      r.error = run.status != "ok" ? kInf
+                : k == 0       ? std::abs(c.eroded / finest.eroded - 1.0)
+                               : rms(c.dh, finest.dh) / rms(finest.dh);
+      r.wall_seconds = run.wall;
+      r.simulated_seconds = time;
+      r.cost = time > 0 ? run.wall / time : kInf;
+      r.particles = particles;
+      r.status = run.status;
+      rows.push_back(r);
+    }
+  }
+  return rows;
+}
+
+std::string fmt(double v, int precision) {
   if (std::isinf(v)) return "inf";
   std::ostringstream o;
   o << std::setprecision(precision) << v;
@@ -291,6 +390,11 @@ std::vector<StudyRow> runEngineStudies(const StudyOptions& o) {
   // 6. Diffusion: the dimensionally consistent form against eq. (19) as printed.
   add(diffusion("consistent", DiffusionForm::kConsistent));
   add(diffusion("as printed", DiffusionForm::kPrinted));
+
+  // 7. The geologic clock: what the morphological factor buys and costs.
+  for (auto& r : morphologicalFactor(o.quick)) add(r);
+  // 8. The carved terrain against particle spacing.
+  for (auto& r : erosionSpacing(o.quick)) add(r);
 
   markPareto(rows);
   return rows;

@@ -15,7 +15,8 @@ import csv, math, sys
 rows = list(csv.DictReader(open(sys.argv[1])))
 def fail(msg):
     print("FAIL:", msg); sys.exit(1)
-studies = {"spacing", "time_step", "eos", "neighbor_search", "advection", "diffusion_form", "render_grid"}
+studies = {"spacing", "time_step", "eos", "neighbor_search", "advection", "diffusion_form", "render_grid",
+           "morphological_factor", "erosion_spacing"}
 missing = studies - {r["study"] for r in rows}
 if missing: fail(f"studies missing from the CSV: {sorted(missing)}")
 for r in rows:
@@ -38,6 +39,17 @@ if not err("advection", "settling speed", "donor–acceptor") < 0.15: fail("dono
 if not err("advection", "soil budget", "donor–acceptor") < 1e-12: fail("donor–acceptor leaks sediment")
 if not err("advection", "soil budget", "naive gradient") > 1e-3: fail("naive advection conserves?")
 if not err("diffusion_form", "diffusion variance", "consistent") < 0.1: fail("consistent diffusion off")
+# The geologic clock: N = 1 is its own reference; every N reaches the same bed time (within the
+# bed time of its last step); the carved terrain against the finest spacing, which is its own.
+if err("morphological_factor", "bed change", "N = 1") != 0: fail("N = 1 differs from itself")
+morph = [r for r in rows if r["study"] == "morphological_factor"]
+if len(morph) != 3: fail(f"morphological_factor: {len(morph)} rows, expected 3")
+for r in morph:
+    if not 1.0 <= float(r["simulated_s"]) < 1.0 + 0.2 + 1e-9: fail(f"bed time off: {r}")
+if err("erosion_spacing", "eroded volume", "Δs = 2 cm") != 0: fail("finest spacing differs from itself")
+spacing = [r for r in rows if r["study"] == "erosion_spacing" and r["reference"] == "eroded volume"]
+if len(spacing) != 4: fail(f"erosion_spacing: {len(spacing)} rows, expected 4")
+if not all(math.isfinite(float(r["error"])) and float(r["error"]) < 1 for r in spacing): fail(f"eroded volume off: {spacing}")
 if not err("diffusion_form", "diffusion variance", "as printed") > 0.5: fail("printed diffusion ≈ 2D?")
 if not err("neighbor_search", "grid lists", "kd-tree") < 1e-3: fail("kd-tree run differs from grid")
 hydro = [float(r["error"]) for r in rows if r["study"] == "spacing" and r["reference"] == "hydrostatic pressure"]
