@@ -202,8 +202,9 @@ int runScene(const RunOptions& o) {
     if (frames && world->steps() % o.framesEvery == 0)
       frames->write(makeFrame(*world), (dir / RunOutputs::frameName(world->steps())).string());
     auto now = std::chrono::steady_clock::now();
-    pace.add(std::chrono::duration<double>(now - start).count(),
-             bySteps ? double(world->steps()) : world->time());
+    const double wall = std::chrono::duration<double>(now - start).count();
+    // With --wall-time alone the run's progress is the wall time itself.
+    pace.add(wall, bySteps ? double(world->steps()) : byTime ? world->time() : wall);
     // A terminal gets a live bar; a log gets one plain line every few seconds.
     if (now - lastReport > (tty ? std::chrono::milliseconds(200) : std::chrono::milliseconds(5000))) {
       lastReport = now;

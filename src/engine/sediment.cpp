@@ -147,7 +147,7 @@ double depositFlux(const SedimentConstants& k, double cd, double dy, double r) {
 using BoundaryVolumes = std::vector<std::vector<std::pair<uint32_t, double>>>;
 
 void replay(const BoundaryVolumes& lists, const BoundaryParticles& b, TerrainAccumulator& acc) {
-  if (acc.particle.size() < b.size()) acc.particle.resize(b.size(), 0.0);
+  if (acc.particle.size() < b.size()) acc.particle.resize(b.size(), 0.0), acc.particleListed.resize(b.size(), 0);
   for (const auto& l : lists)
     for (auto [j, v] : l) acc.addParticle(j, v);
 }

@@ -79,7 +79,8 @@ struct TerrainAccumulator {
   std::vector<int> touched;
   std::vector<uint8_t> listed;  ///< per triangle: 1 when in `touched`
   std::vector<double> particle;     ///< per boundary particle: this step's exchange
-  std::vector<uint32_t> particles;  ///< boundary particles with an entry, in first-touch order
+  std::vector<uint8_t> particleListed;  ///< per boundary particle: 1 when in `particles`
+  std::vector<uint32_t> particles;  ///< boundary particles with an entry, in first-touch order, each once
   /// Per vertex: == epoch when applyTerrainChange changed its height this step.
   std::vector<uint32_t> vertexMark;
   uint32_t epoch = 0;
@@ -87,7 +88,7 @@ struct TerrainAccumulator {
   std::vector<int> rowStart, rowLo, rowHi, changedAt, waiting;
   void resize(int triangles, size_t vertices) {
     volume.assign(size_t(triangles), 0.0), listed.assign(size_t(triangles), 0);
-    touched.clear(), particle.clear(), particles.clear();
+    touched.clear(), particle.clear(), particleListed.clear(), particles.clear();
     vertexMark.assign(vertices, 0u), epoch = 0;
   }
   void add(int tri, double v) {
@@ -96,8 +97,8 @@ struct TerrainAccumulator {
   }
   /// Adds v to boundary particle j's sum for this step (`particle` grows to hold j).
   void addParticle(uint32_t j, double v) {
-    if (j >= particle.size()) particle.resize(size_t(j) + 1, 0.0);
-    if (particle[j] == 0.0) particles.push_back(j);
+    if (j >= particle.size()) particle.resize(size_t(j) + 1, 0.0), particleListed.resize(size_t(j) + 1, 0);
+    if (!particleListed[j]) particleListed[j] = 1, particles.push_back(j);
     particle[j] += v;
   }
   /// Moves each boundary particle's sum, times the morphological factor, onto its triangles
@@ -106,7 +107,7 @@ struct TerrainAccumulator {
   void spread(const BoundaryParticles& b, double factor, double& excess) {
     for (uint32_t j : particles) {
       const double v = particle[j];
-      particle[j] = 0.0;
+      particle[j] = 0.0, particleListed[j] = 0;
       if (v == 0.0) continue;
       const double bed = v * factor;
       excess += bed - v;

@@ -72,9 +72,10 @@ constexpr uint32_t kStateTag = 0x444C5257;  // "WRLD"
 // next Δt's bound), version 4 the count of terrain contacts, version 5 the blocks of cells the
 // boundary particles stand for; older states load with none (each particle stands for part of
 // its triangle, as those builds sampled). Version 6 adds the geologic clock (the bed's time, the
-// factor in effect, what the factor added to the soil budget, the bed guard's record) and the
-// volumes waiting in the terrain accumulator (below kTerrainApplyOverSpacing); older states load
-// at N = 1 with the bed's time equal to the water's, and wait for none.
+// factor in effect and the one asked for, what the factor added to the soil budget, the bed
+// guard's record) and the volumes waiting in the terrain accumulator (below
+// kTerrainApplyOverSpacing); older states load at the scene's factor with the bed's time equal to
+// the water's, and wait for none.
 constexpr uint32_t kStateVersion = 6;
 
 }  // namespace
@@ -140,7 +141,7 @@ void World::saveState(std::ostream& o) const {
   put(o, time_), put(o, dt_), put(o, step_), put(o, supply_.nextId);
   ledger_.save(o);
   put(o, densityRate_);
-  put(o, morphTime_), put(o, factor_);
+  put(o, morphTime_), put(o, factor_), put(o, params_.morphological_factor);
   std::vector<double> waiting;
   for (int t : accumulator_.touched) waiting.push_back(accumulator_.volume[size_t(t)]);
   putVec(o, accumulator_.touched), putVec(o, waiting);
@@ -195,18 +196,23 @@ void World::loadState(std::istream& in) {
   getVec(in, tiles, "active tiles");
   for (int t : tiles)
     if (t < 0 || t >= sampler_.tileCount()) throw std::runtime_error("state is corrupt (tile)");
-  supply_.loadProgress(in);
-  get(in, time_, "clock"), get(in, dt_, "clock"), get(in, step_, "clock"), get(in, supply_.nextId, "clock");
+  // Everything is read into locals and checked before any of it replaces the world's own: a
+  // state refused half-way leaves the world as it was.
+  Supply supply = supply_;
+  supply.loadProgress(in);
+  double time = 0, dt = 0, densityRate = 0;
+  long step = 0;
+  get(in, time, "clock"), get(in, dt, "clock"), get(in, step, "clock"), get(in, supply.nextId, "clock");
   Ledger ledger;
   ledger.load(in, version);
-  densityRate_ = 0;
-  if (version >= 3) get(in, densityRate_, "density rate");
+  if (version >= 3) get(in, densityRate, "density rate");
   std::vector<int> waitingAt;
   std::vector<double> waiting;
-  double morphTime = time_, factor = params_.morphological_factor;
+  // Older states: the bed's clock is the water's, at the scene's factor.
+  double morphTime = time, factor = params_.morphological_factor, requested = factor;
   if (version >= 6) {
-    get(in, morphTime, "geologic clock"), get(in, factor, "geologic clock");
-    if (!std::isfinite(morphTime) || morphTime < 0 || !(factor >= 1 && factor <= 1e6))
+    get(in, morphTime, "geologic clock"), get(in, factor, "geologic clock"), get(in, requested, "geologic clock");
+    if (!std::isfinite(morphTime) || morphTime < 0 || !(factor >= 1 && factor <= 1e6) || !(requested >= factor && requested <= 1e6))
       throw std::runtime_error("state is corrupt (geologic clock)");
     getVec(in, waitingAt, "waiting terrain volumes"), getVec(in, waiting, "waiting terrain volumes", waitingAt.size());
     std::vector<uint8_t> seen(size_t(terrain_.triangleCount()), 0);
@@ -218,6 +224,8 @@ void World::loadState(std::istream& in) {
     }
   }
   f.scratch.clear();
+  supply_ = std::move(supply);
+  time_ = time, dt_ = dt, step_ = step, densityRate_ = densityRate;
   fluid_ = std::move(f);
   vhat_ = std::move(vhat);
   terrain_.heights() = std::move(heights);
@@ -226,7 +234,10 @@ void World::loadState(std::istream& in) {
   sampler_.setActiveTiles(std::move(tiles));
   accumulator_.resize(terrain_.triangleCount(), terrain_.heights().size());
   for (size_t e = 0; e < waitingAt.size(); ++e) accumulator_.add(waitingAt[e], waiting[e]);
-  morphTime_ = morphTime, factor_ = factor;
+  // The factor the guard had lowered holds while the speed-up asked for is the one the state was
+  // saved under; a world whose user has asked for another since (a snapshot restored after the
+  // slider moved) runs at what they asked for.
+  morphTime_ = morphTime, factor_ = requested == params_.morphological_factor ? factor : params_.morphological_factor;
   ledger.initialSoil = ledger_.initialSoil;
   ledger_ = ledger;
   ledger_.energy = mechanicalEnergy();

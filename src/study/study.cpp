@@ -239,12 +239,17 @@ std::vector<StudyRow> morphologicalFactor(bool quick) {
     s.params.morphological_factor = n;
     World w(buildScene(s).desc);
     std::vector<double> atSpinup;
+    double markT = 0;  // the bed's time when the spin-up ended
     const Run run = drive(w, [&] { return w.morphologicalTime() >= spinup + bedTime - 1e-12; }, [&] {
-      if (atSpinup.empty() && w.time() >= spinup) atSpinup = w.heightChange();
+      if (atSpinup.empty() && w.time() >= spinup) atSpinup = w.heightChange(), markT = w.morphologicalTime();
     });
     BedChange c = bedChange(w);
+    // The last step can pass the target by up to N Δt of bed time: the change since the spin-up
+    // is scaled back to the target's.
+    const double reached = w.morphologicalTime() - markT;
+    const double toTarget = reached > 0 ? (spinup + bedTime - markT) / reached : 1.0;
     if (atSpinup.size() == c.dh.size())
-      for (size_t v = 0; v < c.dh.size(); ++v) c.dh[v] -= atSpinup[v];
+      for (size_t v = 0; v < c.dh.size(); ++v) c.dh[v] = (c.dh[v] - atSpinup[v]) * toTarget;
     if (n == 1) reference = c;
     // What the guard allowed, when it stepped in.
     const std::string choice = "N = " + fmt(n) +

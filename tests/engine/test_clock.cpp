@@ -99,7 +99,17 @@ TEST_CASE("a change of N mid-run and a resume keep the ledger closed, and the re
   World resumed(now.desc);
   resumed.loadState(state);
   CHECK(resumed.morphologicalTime() == w.morphologicalTime());
+  CHECK(resumed.morphologicalFactor() == 50);
   CHECK(resumed.soilBudget().morphological == w.soilBudget().morphological);
+  // A world whose user has asked for another speed-up since (a snapshot restored after the
+  // slider moved) takes the state and runs at what was asked for.
+  {
+    std::stringstream again(state.str());
+    World faster(river(1000).desc);
+    faster.loadState(again);
+    CHECK(faster.morphologicalFactor() == 1000);
+    CHECK(faster.morphologicalTime() == w.morphologicalTime());
+  }
   CHECK(resumed.soilBudget().relativeError() == w.soilBudget().relativeError());
   for (int k = 0; k < 25; ++k) w.step(), resumed.step();
   CHECK(resumed.stateHash() == w.stateHash());

@@ -117,6 +117,11 @@ TEST_CASE("spacing sampling: the canyon's soil budget closes, the same at 1 and 
   const int32_t nowhere = -1;
   std::memcpy(outside.data() + outside.size() - 12 * n - 8, &nowhere, sizeof nowhere);
   CHECK(refuse(outside) == "state is corrupt (waiting terrain volumes)");
+  // A state of another step refused at its very end leaves the world's clock and particles alone.
+  for (int k = 0; k < 3; ++k) resumed.step();
+  const double before = resumed.time();
+  CHECK(refuse(outside) == "state is corrupt (waiting terrain volumes)");
+  CHECK(resumed.time() == before);
   CHECK(refuse(bytes) == "accepted");
   omp_set_num_threads(omp_get_num_procs());
 }
