@@ -70,10 +70,9 @@ struct PairFlux {
     const float t = 2.0f - q;
     return fCoef * 0.75f * t * t;
   }
-  /// |F(r)| / r, 0 for coincident particles.
-  float ratio(float r) const { return r > 0.0f ? absF(r) / r : 0.0f; }
-  /// The same bits as ratio(r), every piece computed and one chosen (no branch to mispredict).
-  float ratioSelect(float r) const {
+  /// |F(r)| / r, 0 for coincident particles: absF(r) / r to the bit, every piece of the spline
+  /// computed and one chosen (no branch to mispredict).
+  float ratio(float r) const {
     const float q = r * invHm, t = 2.0f - q;
     const float inner = fCoef * (3.0f * q - 2.25f * q * q), outer = fCoef * 0.75f * t * t;
     const float f = q < 1.0f ? inner : (q < 2.0f ? outer : 0.0f);
@@ -115,7 +114,7 @@ void exchangePlain(const PairFlux& pair, const NeighborLists& nbrs, const std::v
     const float cj = conc[j];
     const Vec3f xij = xi - x[j];
     const float dy = xij.y();
-    const float fr = pair.ratioSelect(xij.norm());
+    const float fr = pair.ratio(xij.norm());
     const PairGeometry g = pair.geometry(std::abs(dy), fr);
     const bool iDownstream = down * dy < 0.0f, jDownstream = down * dy > 0.0f;
     const float gainRate = (iDownstream ? g.settle * cj * hi : 0.0f) + (cj > ci ? g.diffuse * (cj - ci) : 0.0f);
@@ -209,28 +208,29 @@ void transferSediment(const SedimentConstants& k, const SedimentEffects& fx,
           exchangePlain<true>(pair, nbrs, f.x, conc, hind, scale, rising, dt, i, d, in, out);
         else if (plain)
           exchangePlain<false>(pair, nbrs, f.x, conc, hind, scale, rising, dt, i, d, in, out);
-        for (uint32_t c = 0; !plain && c < nbrs.count(i); ++c) {
-          const uint32_t j = js[c];
-          const float cj = conc[j];
-          if (ci == 0.0f && cj == 0.0f) continue;
-          const float dy = f.x[i].y() - f.x[j].y();
-          // |F(r)|/r: the same bits in the unscaled and the scaled pass.
-          const float fr = pair.ratio((f.x[i] - f.x[j]).norm());
-          PairGeometry g = pair.geometry(std::abs(dy), fr);
-          if (printed) g.diffuse = pair.printedDiffusion((f.x[i] - f.x[j]).norm(), f.rho[i], f.rho[j]);
-          // The symmetric-difference gradient Σ_j V (C_j − C_i) ∇W_ij, y component over −V.
-          if (naive) grad += double(cj - ci) * double(fr) * double(dy);
-          // Settling carries sediment down the pair (up, for grains lighter than water).
-          const bool iDownstream = rising ? dy > 0.0f : dy < 0.0f;
-          const bool jDownstream = rising ? dy < 0.0f : dy > 0.0f;
-          const double gain = PairFlux::flux(g, cj, ci, hind[i], iDownstream) * dt;
-          const double loss = PairFlux::flux(g, ci, cj, hind[j], jDownstream) * dt;
-          // Unscaled, the factors are being written by other threads: read none of them.
-          d += scaled ? gain * std::min(scale[j].out, scale[i].in) : gain;
-          d -= scaled ? loss * std::min(scale[i].out, scale[j].in) : loss;
-          in += gain;
-          out += loss;
-        }
+        else
+          for (uint32_t c = 0; c < nbrs.count(i); ++c) {
+            const uint32_t j = js[c];
+            const float cj = conc[j];
+            if (ci == 0.0f && cj == 0.0f) continue;
+            const float dy = f.x[i].y() - f.x[j].y();
+            // |F(r)|/r: the same bits in the unscaled and the scaled pass.
+            const float fr = pair.ratio((f.x[i] - f.x[j]).norm());
+            PairGeometry g = pair.geometry(std::abs(dy), fr);
+            if (printed) g.diffuse = pair.printedDiffusion((f.x[i] - f.x[j]).norm(), f.rho[i], f.rho[j]);
+            // The symmetric-difference gradient Σ_j V (C_j − C_i) ∇W_ij, y component over −V.
+            if (naive) grad += double(cj - ci) * double(fr) * double(dy);
+            // Settling carries sediment down the pair (up, for grains lighter than water).
+            const bool iDownstream = rising ? dy > 0.0f : dy < 0.0f;
+            const bool jDownstream = rising ? dy < 0.0f : dy > 0.0f;
+            const double gain = PairFlux::flux(g, cj, ci, hind[i], iDownstream) * dt;
+            const double loss = PairFlux::flux(g, ci, cj, hind[j], jDownstream) * dt;
+            // Unscaled, the factors are being written by other threads: read none of them.
+            d += scaled ? gain * std::min(scale[j].out, scale[i].in) : gain;
+            d -= scaled ? loss * std::min(scale[i].out, scale[j].in) : loss;
+            in += gain;
+            out += loss;
+          }
         // −v_s·∇C as a rate of C_i (the study's naive baseline): not a pairwise flux.
         if (naive) d -= naiveCoef * double(hind[i]) * grad * dt;
         if (deposit && ci > 0.0f) {
@@ -332,6 +332,15 @@ std::vector<double> vertexAreas(const Heightfield& hf) {
   for (int t = 0; t < hf.triangleCount(); ++t)
     for (size_t v : hf.triangleVertexIndices(t)) a[v] += third;
   return a;
+}
+
+TerrainChange measureTerrainChange(const std::vector<double>& dh, const std::vector<double>& areas) {
+  TerrainChange c;
+  for (size_t v = 0; v < dh.size(); ++v) {
+    c.max_erosion = std::max(c.max_erosion, -dh[v]), c.max_deposition = std::max(c.max_deposition, dh[v]);
+    (dh[v] < 0 ? c.eroded : c.deposited) += std::abs(dh[v]) * areas[v];
+  }
+  return c;
 }
 
 double terrainVolume(const Heightfield& hf, const std::vector<double>& areas, double reference) {

@@ -190,6 +190,13 @@ inline void erode(const SedimentConstants& k, const NeighborLists& bnbrs, const 
 /// Σ_v h_v A_v is exactly the volume under the piecewise-linear surface.
 std::vector<double> vertexAreas(const Heightfield& hf);
 
+/// A terrain's change against its start: the deepest cut and the highest deposit [m], and the
+/// volumes cut and deposited, Σ_v max(0, ∓Δh_v) A_v in vertex order [m³].
+struct TerrainChange {
+  double max_erosion = 0, max_deposition = 0, eroded = 0, deposited = 0;
+};
+TerrainChange measureTerrainChange(const std::vector<double>& dh, const std::vector<double>& areas);
+
 /// Soil volume above `reference`: Σ_v (h_v − reference) A_v, summed in vertex order.
 double terrainVolume(const Heightfield& hf, const std::vector<double>& areas, double reference);
 

@@ -259,6 +259,8 @@ class World {
   /// Height change of every vertex since the start, of settledTerrain() [m].
   std::vector<double> heightChange() const;
   const Heightfield& initialTerrain() const { return initialTerrain_; }
+  /// Each vertex's share of the terrain's area, A_v (vertexAreas) [m²].
+  const std::vector<double>& vertexArea() const { return vertexArea_; }
   /// What the naive advection (sediment.advection = naive_gradient) made or destroyed since the
   /// start, and the extreme C before the clamp (from the initial range on). With the conservative
   /// forms the volumes stay 0 and the C range is the initial one.

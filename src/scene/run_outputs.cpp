@@ -2,8 +2,6 @@
 
 #include <omp.h>
 
-#include <algorithm>
-#include <cmath>
 #include <cstdio>
 #include <iomanip>
 
@@ -104,20 +102,13 @@ json RunOutputs::exports(const World& w) {
 
 namespace {
 
-// The settled terrain's change since the start: the deepest cut and the highest deposit, and the
-// volumes cut and deposited, Σ max(0, ∓Δh_v) A_v.
+// The settled terrain's change since the start (measureTerrainChange).
 json terrainChangeJson(const World& w) {
-  const std::vector<double> change = w.heightChange();
-  const std::vector<double> area = vertexAreas(w.initialTerrain());
-  double deepest = 0, highest = 0, eroded = 0, deposited = 0;
-  for (size_t v = 0; v < change.size(); ++v) {
-    deepest = std::max(deepest, -change[v]), highest = std::max(highest, change[v]);
-    (change[v] < 0 ? eroded : deposited) += std::abs(change[v]) * area[v];
-  }
-  return {{"max_erosion_m", deepest},
-          {"max_deposition_m", highest},
-          {"eroded_m3", eroded},
-          {"deposited_m3", deposited}};
+  const TerrainChange c = measureTerrainChange(w.heightChange(), w.vertexArea());
+  return {{"max_erosion_m", c.max_erosion},
+          {"max_deposition_m", c.max_deposition},
+          {"eroded_m3", c.eroded},
+          {"deposited_m3", c.deposited}};
 }
 
 }  // namespace

@@ -199,7 +199,8 @@ StudyRow neighborSearch(const std::string& choice, SceneSpec spec, long steps, N
 
 // --- the bed: what erosion made of the terrain --------------------------------------------------
 
-// The settled height change of every vertex since the start, and the volume cut, Σ max(0, −Δh) A_v.
+// The settled height change of every vertex since the start, and the volume cut
+// (measureTerrainChange).
 struct BedChange {
   std::vector<double> dh;
   double eroded = 0;
@@ -207,9 +208,7 @@ struct BedChange {
 BedChange bedChange(const World& w) {
   BedChange b;
   b.dh = w.heightChange();
-  const std::vector<double> area = vertexAreas(w.initialTerrain());
-  for (size_t v = 0; v < b.dh.size(); ++v)
-    if (b.dh[v] < 0) b.eroded -= b.dh[v] * area[v];
+  b.eroded = measureTerrainChange(b.dh, w.vertexArea()).eroded;
   return b;
 }
 // RMS of a − b over the vertices (b empty: of a).
