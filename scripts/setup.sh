@@ -7,7 +7,7 @@ packages=(
   libeigen3-dev libcli11-dev nlohmann-json3-dev libnanoflann-dev catch2
   libpng-dev libstb-dev
   libglfw3-dev libglew-dev libimgui-dev libegl1-mesa-dev libosmesa6-dev libgl1-mesa-dri xvfb xauth
-  fonts-dejavu-core xdotool
+  fonts-dejavu-core xdotool ffmpeg
   clang libclang-rt-14-dev libomp-14-dev
 )
 missing=()

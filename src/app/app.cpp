@@ -306,6 +306,12 @@ int runApp(const SceneSpec& spec, const AppOptions& o) {
   long frames = 0, firstStep = -1, rebuilds = 0, surfaceFrames = 0, levelChanges = 0;
   int lastLevel = state.budget.level();
   double frameStart = opened;
+  std::pair<int, int> lapseSize{0, 0};
+  if (o.timelapse.everySteps > 0 || o.timelapse.everyBedSeconds > 0) {
+    const std::string note = state.timelapse.start(o.timelapseFolder, o.timelapse);
+    actions.log().push_back(note);
+    if (!state.timelapse.recording()) throw TimelapseError(note);
+  }
 
   closeRequested = 0;
   auto request = [](int) { closeRequested = 1; };
@@ -337,6 +343,14 @@ int runApp(const SceneSpec& spec, const AppOptions& o) {
     drawn.same_frame = !fresh && frames > 0;
     drawn.keep_surface = !rebuild;
     renderer.render(snap.frame, orbit->camera(), drawn);
+    // The time-lapse's picture, when one is due: at the size the recording started with.
+    state.timelapse.frame(snap, [&](const std::string& path) {
+      if (state.timelapse.pictures() == 0) lapseSize = {size.fbw, size.fbh};
+      renderer.resize(lapseSize.first, lapseSize.second);
+      renderer.render(snap.frame, orbit->camera(), state.budget.apply(state.settings));
+      renderer.writePng(path);
+    });
+    if (auto done = state.timelapse.finished()) actions.log().push_back(*done);
     glFinish();
     plots.addRender(glfwGetTime() - t0);
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
@@ -360,6 +374,8 @@ int runApp(const SceneSpec& spec, const AppOptions& o) {
     if (o.quitAfterSeconds > 0 && glfwGetTime() - opened >= o.quitAfterSeconds) break;
   }
   if (!o.screenshot.empty()) state.screenshot(o.screenshot);
+  // A recording still going ends with the window: its video is made before the program ends.
+  if (const std::string note = state.timelapse.finishNow(); !note.empty()) actions.log().push_back(note);
   const WindowSize size(window);
   actions.log().push_back(
       checkLayout(state.layout, state.drawn, state.cut, float(size.w), float(size.h)));

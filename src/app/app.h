@@ -6,6 +6,7 @@
 
 #include "app/replay.h"
 #include "scene/presets.h"
+#include "scene/timelapse.h"
 
 namespace scour {
 
@@ -31,6 +32,9 @@ struct AppOptions {
     std::vector<double> frameSeconds;  ///< each frame, from the start of one to the next
   };
   Stats* stats = nullptr;    ///< filled on closing when set
+  /// A spacing set: record a time-lapse from the start into timelapseFolder (the Run panel's).
+  TimelapseOptions timelapse{0, 0, "mp4", 24};
+  std::string timelapseFolder = "scour_out_timelapse";
 };
 
 

@@ -302,6 +302,41 @@ void drawMarkers(const Actions& actions, int hovered) {
   }
 }
 
+// A picture every K steps or S seconds of bed time into "<File panel's name>_timelapse/", and a
+// video of them when stopped (scene/timelapse.h).
+void timelapseSection(Actions& actions, PanelState& state) {
+  TimelapseRecorder& rec = state.timelapse;
+  if (!ImGui::CollapsingHeader("time-lapse", rec.recording() ? ImGuiTreeNodeFlags_DefaultOpen : 0)) return;
+  if (!rec.recording()) {
+    state.lapseByBed = radioRow(state.lapseByBed, {"every K steps", "every S s of bed time"});
+    labelRoom({"spacing"});
+    if (state.lapseByBed == 0) {
+      ImGui::InputInt("spacing", &state.lapseSteps);
+      state.lapseSteps = std::clamp(state.lapseSteps, 1, 1000000);
+    } else {
+      ImGui::InputFloat("spacing", &state.lapseBedSeconds, 0, 0, "%.3g s");
+      state.lapseBedSeconds = std::clamp(state.lapseBedSeconds, 1e-4f, 1e6f);
+    }
+    ImGui::PopItemWidth();
+    ImGui::Text("video:");
+    ImGui::SameLine();
+    state.lapseVideo = radioRow(state.lapseVideo, {"mp4", "gif", "none"});
+    if (flowButton("record", true)) {
+      TimelapseOptions o;
+      if (state.lapseByBed == 0)
+        o.everySteps = state.lapseSteps;
+      else
+        o.everyBedSeconds = state.lapseBedSeconds;
+      o.video = state.lapseVideo == 0 ? "mp4" : state.lapseVideo == 1 ? "gif" : "none";
+      actions.log().push_back(rec.start(std::string(state.path) + "_timelapse", o));
+    }
+    if (rec.makingVideo()) ImGui::TextWrapped("making the last one's video");
+  } else {
+    ImGui::TextWrapped("recording: %ld pictures in %s", rec.pictures(), rec.folder().c_str());
+    if (flowButton("stop recording", true)) actions.log().push_back(rec.stop());
+  }
+}
+
 void runPanel(const Snapshot& snap, Actions& actions, PanelState& state) {
   Panel panel(state, PanelId::kRun);
   if (!panel) return;
@@ -338,6 +373,7 @@ void runPanel(const Snapshot& snap, Actions& actions, PanelState& state) {
   else
     ImGui::TextWrapped("bed guard: quiet, the bed moved %.2g Δs in the last step (bound %.2g)",
                        snap.bedStep, bound);
+  timelapseSection(actions, state);
   snapshotsSection(snap, actions);  // whole world states to go back to (worker.h)
 }
 

@@ -10,6 +10,7 @@
 
 #include "app/actions.h"
 #include "app/layout.h"
+#include "app/recorder.h"
 #include "app/render_budget.h"
 #include "render/renderer.h"
 
@@ -44,13 +45,20 @@ struct PanelState {
   char path[512] = "scour_out";  ///< the File panel's base name
   /// Writes the window's picture to a path (the renderer's).
   std::function<void(const std::string&)> screenshot;
+  /// The time-lapse (Run panel): its recording, and the spacing and video the panel sets.
+  TimelapseRecorder timelapse;
+  int lapseByBed = 0;  ///< 0: every lapseSteps steps, 1: every lapseBedSeconds of bed time
+  int lapseSteps = 100;
+  float lapseBedSeconds = 0.5f;
+  int lapseVideo = 0;  ///< mp4, gif, none
 };
 
 /// Sources as stems from the terrain to their centre (highlighted when `hovered` or held),
 /// sinks as the outline of their box on the terrain; over the picture, under the panels.
 void drawMarkers(const Actions& actions, int hovered);
 
-/// Play, pause, step, reset, undo, redo, steps per frame, the snapshots.
+/// Play, pause, step, reset, undo, redo, steps per frame, the geologic clock, the time-lapse,
+/// the snapshots.
 void runPanel(const Snapshot& snap, Actions& actions, PanelState& state);
 /// Every parameter of the table, by group: sliders (logarithmic over a wide range), choices.
 void parametersPanel(const Snapshot& snap, Actions& actions, PanelState& state);

@@ -10,6 +10,7 @@
 #include "cli/commands.h"
 #include "cli/render_options.h"
 #include "scene/builtin_scenes.h"
+#include "scene/timelapse.h"
 
 int main(int argc, char** argv) {
   using namespace scour;
@@ -33,6 +34,10 @@ int main(int argc, char** argv) {
   app.add_option("--quality", windowQuality, "The water's quality: auto (as the frame budget allows; default), fine, grid1, grid1.5, grid2.25, grid3, grid3-half, particles");
   std::string windowTerrain = "erosion";
   app.add_option("--terrain", windowTerrain, "Terrain colours at the start: erosion (default), shaded, sediment");
+  std::string windowLapse, windowLapseVideo = "mp4";
+  app.add_option("--timelapse", windowLapse, "Record a time-lapse from the start: a picture every K steps (250) or S seconds of bed time (0.5s); its video when the window closes");
+  app.add_option("--timelapse-video", windowLapseVideo, "The time-lapse's video: mp4 (default), gif or none");
+  app.add_option("--timelapse-out", window.timelapseFolder, "The time-lapse's folder (default scour_out_timelapse; the video beside it)");
   Command run = addRunCommand(app);
   Command bench = addBenchCommand(app);
   Command render = addRenderCommand(app);
@@ -71,6 +76,17 @@ int main(int argc, char** argv) {
       if (ec || !std::filesystem::is_directory(window.panelShots))
         throw InputError("--panel-shots: cannot create directory '" + window.panelShots + "'" +
                          (ec ? ": " + ec.message() : ""));
+    }
+    if (!windowLapse.empty()) {
+      try {
+        parseTimelapseSpacing("--timelapse", windowLapse, window.timelapse);
+        parseTimelapseVideo("--timelapse-video", windowLapseVideo, window.timelapse);
+      } catch (const TimelapseError& e) {
+        throw InputError(e.what());
+      }
+      if (window.timelapse.video != "none" && findFfmpeg().empty())
+        throw InputError("--timelapse: the ffmpeg program, which makes the video, is not installed "
+                         "(scripts/setup.sh installs it); --timelapse-video none keeps the pictures alone");
     }
     window.terrain = int(parseTerrain(windowTerrain));
     try {

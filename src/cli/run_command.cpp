@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
+#include <optional>
 #include <sstream>
 
 #include "cli/commands.h"
@@ -17,6 +18,7 @@
 #include "scene/output.h"
 #include "scene/run_outputs.h"
 #include "scene/scene_json.h"
+#include "scene/timelapse.h"
 
 namespace scour {
 
@@ -92,6 +94,9 @@ struct RunOptions {
   long checkpointEvery = 0;
   std::string resume;
   long framesEvery = 0;
+  std::string timelapse;  ///< "K" steps or "Ss" seconds of bed time between pictures
+  std::string timelapseVideo = "mp4";
+  int timelapseFps = 24;
   RenderOptions render;
 };
 
@@ -129,10 +134,29 @@ int runScene(const RunOptions& o) {
   }
   // Pictures: the GL context and renderer are made (and their options checked) before any output.
   std::unique_ptr<FrameWriter> frames;
-  if (o.framesEvery > 0) {
+  std::optional<Timelapse> timelapse;
+  TimelapseOptions lapse;
+  if (!o.timelapse.empty()) {
+    try {
+      parseTimelapseSpacing("--timelapse", o.timelapse, lapse);
+      parseTimelapseVideo("--timelapse-video", o.timelapseVideo, lapse);
+    } catch (const TimelapseError& e) {
+      throw InputError(e.what());
+    }
+    lapse.fps = o.timelapseFps;
+  }
+  if (o.framesEvery > 0 || !o.timelapse.empty()) {
     frames = std::make_unique<FrameWriter>(o.render);
     if (scene.spec.has_camera)
       frames->setSceneCamera(scene.spec.camera_eye.cast<float>(), scene.spec.camera_target.cast<float>());
+  }
+  // The time-lapse first: without the program for its video, nothing is written.
+  if (!o.timelapse.empty()) {
+    try {
+      timelapse.emplace(fs::path(o.out) / "timelapse", lapse);
+    } catch (const TimelapseError& e) {
+      throw InputError(e.what());
+    }
   }
   std::error_code ec;
   fs::create_directories(o.out, ec);
@@ -140,6 +164,14 @@ int runScene(const RunOptions& o) {
     throw InputError("--out: cannot create directory '" + o.out + "'" +
                      (ec ? ": " + ec.message() : ""));
   const fs::path dir(o.out);
+  // A time-lapse picture when one is due, numbered in order; its clocks in timelapse.csv.
+  auto lapsePicture = [&](bool last) {
+    if (!timelapse) return;
+    if (last ? timelapse->lastStep() == world->steps() : !timelapse->due(world->steps(), world->morphologicalTime()))
+      return;
+    frames->write(makeFrame(*world), timelapse->nextPicture().string());
+    timelapse->added(world->steps(), world->time(), world->morphologicalTime(), world->factorNow());
+  };
 
   auto start = std::chrono::steady_clock::now();
   auto lastReport = start;
@@ -178,7 +210,8 @@ int runScene(const RunOptions& o) {
   };
   RunOutputs outputs(dir, {o.particlesEvery, o.metricsEvery, o.checkpointEvery, o.mesh}, scene);
   outputs.start(*world);
-  if (frames) frames->write(makeFrame(*world), (dir / RunOutputs::frameName(world->steps())).string());
+  if (o.framesEvery > 0) frames->write(makeFrame(*world), (dir / RunOutputs::frameName(world->steps())).string());
+  lapsePicture(false);
   std::string stoppedBy = bySteps ? "steps" : "time";
   long guardSeen = world->bedGuard().lowered;
   auto more = [&] {
@@ -199,8 +232,9 @@ int runScene(const RunOptions& o) {
                 << world->params().max_bed_step << "): geologic speed-up lowered from "
                 << guard.lastFrom << " to " << world->morphologicalFactor() << "\n";
     }
-    if (frames && world->steps() % o.framesEvery == 0)
+    if (o.framesEvery > 0 && world->steps() % o.framesEvery == 0)
       frames->write(makeFrame(*world), (dir / RunOutputs::frameName(world->steps())).string());
+    lapsePicture(false);
     auto now = std::chrono::steady_clock::now();
     const double wall = std::chrono::duration<double>(now - start).count();
     // With --wall-time alone the run's progress is the wall time itself.
@@ -213,6 +247,20 @@ int runScene(const RunOptions& o) {
   });
   if (tty) progress(true);
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  std::string videoProblem;
+  if (timelapse) {
+    if (end.ok()) lapsePicture(true);  // the time-lapse ends on the state the run ends on
+    videoProblem = timelapse->finish();
+    json entry = {{"pictures", timelapse->pictures()},
+                  {"folder", fs::relative(timelapse->folder(), dir).string()},
+                  {"every_steps", lapse.everySteps},
+                  {"every_bed_s", lapse.everyBedSeconds},
+                  {"fps", lapse.fps}};
+    if (!timelapse->videoPath().empty())
+      entry["video"] = videoProblem.empty() ? json(fs::relative(timelapse->videoPath(), dir).string()) : json(nullptr);
+    if (!videoProblem.empty()) entry["video_problem"] = videoProblem;
+    outputs.addToSummary("timelapse", entry);
+  }
   outputs.finish(*world, end, wall, stoppedBy);
   if (!end.ok()) {
     std::cerr << "error: " << end.describe() << "\n"
@@ -226,6 +274,18 @@ int runScene(const RunOptions& o) {
   std::cout << ", " << world->fluid().size() << " particles) in " << wall << " s";
   if (stoppedBy == "wall_time") std::cout << " (the wall-time budget)";
   std::cout << "; outputs in " << dir.string() << "\n";
+  if (timelapse) {
+    std::cout << "time-lapse: " << timelapse->pictures() << " pictures in " << timelapse->folder().string();
+    if (!timelapse->videoPath().empty() && videoProblem.empty())
+      std::cout << ", the video " << timelapse->videoPath().string();
+    std::cout << "\n";
+    // The pictures are there, but a video asked for was not made: the run did not do all it was told.
+    if (!videoProblem.empty() && videoProblem != "one picture makes no video") {
+      std::cerr << "error: time-lapse video: " << videoProblem << "\n";
+      return kExitFailure;
+    }
+    if (!videoProblem.empty()) std::cerr << "note: time-lapse: " << videoProblem << "\n";
+  }
   return kExitOk;
 }
 
@@ -257,6 +317,12 @@ Command addRunCommand(CLI::App& app) {
       ->check(kPositive);
   c->add_option("--frames", o->framesEvery, "Render frame_<step>.png every K steps (and at the start)")
       ->check(kPositive);
+  c->add_option("--timelapse", o->timelapse,
+                "A time-lapse: a picture every K steps (250) or every S seconds of bed time (0.5s) in "
+                "timelapse/, and a video of them (needs the ffmpeg program)");
+  c->add_option("--timelapse-video", o->timelapseVideo, "The time-lapse's video: mp4 (default), gif or none");
+  c->add_option("--timelapse-fps", o->timelapseFps, "The time-lapse video's frames per second (default 24)")
+      ->check(CLI::Range(1, 240));
   addRenderOptions(c, o->render);
   auto* resume = c->add_option("--resume", o->resume,
                                "Continue from a checkpoint (--steps/--time: the total to reach)");

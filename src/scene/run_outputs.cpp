@@ -162,6 +162,7 @@ json RunOutputs::finish(const World& w, const RunEnd& end, double wallSeconds, c
   summary["state_hash"] = hash.str();
   summary["scene"] = sceneToJson(scene_);
   summary["exports"] = exports(w);
+  for (const auto& [key, value] : extra_.items()) summary[key] = value;
   writeAtomically(dir_ / "summary.json", [&](std::ostream& out) { out << summary.dump(2) << "\n"; });
   return summary;
 }

@@ -35,6 +35,9 @@ class RunOutputs {
   /// for a run that ended well: "steps", "time" or "wall_time"). Returns the summary.
   nlohmann::json finish(const World& w, const RunEnd& end, double wallSeconds, const std::string& stoppedBy);
 
+  /// An entry the summary gets besides its own (the run's time-lapse, say).
+  void addToSummary(const std::string& key, nlohmann::json value) { extra_[key] = std::move(value); }
+
   /// "frame_000120.png": the name of a picture of step `step`.
   static std::string frameName(long step);
 
@@ -46,6 +49,7 @@ class RunOutputs {
   RunOutputOptions options_;
   const Scene& scene_;
   std::ostringstream metrics_;
+  nlohmann::json extra_ = nlohmann::json::object();
 };
 
 }  // namespace scour

@@ -16,12 +16,35 @@ read -r w h colours water < <(python3 "$here/png_stats.py" "$tmp/shot.png")
 [ "$colours" -gt 500 ] || { echo "screenshot nearly uniform: $colours colours"; exit 1; }
 [ "$water" -gt 500 ] || { echo "no water in the screenshot: $water water-coloured pixels"; exit 1; }
 echo "window: $out; screenshot ${w}x$h, $colours colours, $water water-coloured pixels"
+# A time-lapse recorded from the start: pictures at least 3 steps apart, all of one size, and
+# the video made when the window closes.
+out=$(xvfb-run -a -s "-screen 0 800x600x24" "$scour" --scale 0.3 --size 320x200 --quality particles \
+      --quit-after-frames 12 --timelapse 3 --timelapse-out "$tmp/lapse" 2>&1)
+grep -qF "log: time-lapse: recording into $tmp/lapse" <<<"$out" || { echo "no recording: $out"; exit 1; }
+python3 - "$tmp/lapse" <<'PY'
+import csv, os, subprocess, sys
+d = sys.argv[1]
+rows = list(csv.DictReader(open(os.path.join(d, "timelapse.csv"))))
+steps = [int(r["step"]) for r in rows]
+assert len(rows) >= 2 and all(b - a >= 3 for a, b in zip(steps, steps[1:])), steps
+probe = subprocess.run(["ffprobe", "-v", "error", "-count_frames", "-show_entries",
+                        "stream=width,height,nb_read_frames", "-of", "csv=p=0", d + ".mp4"],
+                       capture_output=True, text=True, check=True)
+assert probe.stdout.strip() == "320,200,%d" % len(rows), (probe.stdout, len(rows))
+PY
+grep -qF "pictures in $tmp/lapse, the video $tmp/lapse.mp4" <<<"$out" || { echo "no video line: $out"; exit 1; }
+echo "window time-lapse: ok"
 # Bad window options: exit 2, nothing written.
 set +e
 msg=$("$scour" --size 10x10 --screenshot "$tmp/never.png" 2>&1); rc=$?
 set -e
 [ $rc -eq 2 ] && grep -qF -- "--size: expected WxH" <<<"$msg" && [ ! -e "$tmp/never.png" ] \
   || { echo "bad --size: $rc $msg"; exit 1; }
+set +e
+msg=$("$scour" --timelapse 0.5x 2>&1); rc=$?
+set -e
+[ $rc -eq 2 ] && grep -qF -- "--timelapse: expected a step count (250) or seconds of bed time (0.5s), each > 0, found '0.5x'" <<<"$msg" \
+  || { echo "bad --timelapse: $rc $msg"; exit 1; }
 set +e
 msg=$("$scour" --quit-after-frames 2 --panel-shots /proc/nope/shots 2>&1); rc=$?
 set -e
