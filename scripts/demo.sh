@@ -8,6 +8,9 @@ scripts/build.sh --target scour  # the program only: the tests are the second co
 if [ -n "${DISPLAY:-}${WAYLAND_DISPLAY:-}" ]; then
   exec ./build/scour default
 fi
-./build/scour run default --time 2 --out out/default --particles-every 100 --frames 250
+# A fresh folder each time (a time-lapse never mixes two runs' pictures).
+rm -rf out/default
+./build/scour run default --time 3 --out out/default --particles-every 1000 --timelapse 5s
 echo "demo: no display, so the default scene ran headless; outputs (summary.json, particles_*.ply,"
-echo "frame_*.png pictures) are in $(pwd)/out/default. With a display, the same command opens the window."
+echo "the time-lapse timelapse.mp4 and its pictures in timelapse/) are in $(pwd)/out/default."
+echo "With a display, the same command opens the window."

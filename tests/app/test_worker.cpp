@@ -34,7 +34,7 @@ bool waitFor(SimulationWorker& w, F&& done) {
 
 // Scale 0.2: coarser than this, the default valley is under-resolved (Δs above its grid cell)
 // and a splash can pass 0.5 Δs into the terrain.
-SceneSpec small() { return presetSpec("default", 0.2); }
+SceneSpec small() { return presetSpec("valley", 0.2); }
 
 }  // namespace
 

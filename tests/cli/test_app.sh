@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The window, under Xvfb: scour with no subcommand opens the default scene, renders frames,
+# The window, under Xvfb: scour opens a scene (the valley: its lake fills the view), renders frames,
 # closes after N frames without a GL error, and its screenshot shows terrain and water.
 set -euo pipefail
 scour="$1"
@@ -7,7 +7,7 @@ here="$(dirname "$0")"
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 command -v xvfb-run >/dev/null || { echo "xvfb-run is missing (scripts/setup.sh installs xvfb)"; exit 1; }
-out=$(xvfb-run -a -s "-screen 0 800x600x24" "$scour" --scale 0.3 --size 640x400 --terrain shaded --quality fine --quit-after-frames 15 \
+out=$(xvfb-run -a -s "-screen 0 800x600x24" "$scour" valley --scale 0.3 --size 640x400 --terrain shaded --quality fine --quit-after-frames 15 \
       --screenshot "$tmp/shot.png" 2>&1)
 grep -q "closed after 15 frames" <<<"$out" || { echo "unexpected: $out"; exit 1; }
 grep -q "GL errors: 0" <<<"$out" || { echo "GL errors: $out"; exit 1; }
@@ -85,7 +85,7 @@ cat > "$tmp/script.txt" <<'SCRIPT'
 46 click 560 420
 48 press snapshot
 SCRIPT
-out=$(xvfb-run -a -s "-screen 0 1280x720x24" "$scour" --scale 0.2 --size 1280x720 --replay "$tmp/script.txt" \
+out=$(xvfb-run -a -s "-screen 0 1280x720x24" "$scour" valley --scale 0.2 --size 1280x720 --replay "$tmp/script.txt" \
       --quit-after-frames 120 2>&1)
 grep -q "erosion.k_eps 0.35" <<<"$out" || { echo "Kε not set: $out"; exit 1; }
 grep -q "log: source placed at" <<<"$out" || { echo "no source placed: $out"; exit 1; }

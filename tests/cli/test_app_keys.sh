@@ -25,10 +25,10 @@ export DISPLAY=":$(head -1 "$tmp/display")"
 printf '3 place on\n' >"$tmp/script.txt"
 # --quality fine: the finest surface, so frames are slow on llvmpipe (about 50 ms: a tap's down and
 # up, and a click's, fall between two frames: none may be lost).
-"$scour" default --paused --scale 0.2 --size 1280x720 --quality fine --replay "$tmp/script.txt" \
+"$scour" valley --paused --scale 0.2 --size 1280x720 --quality fine --replay "$tmp/script.txt" \
   --quit-after-seconds 300 >"$tmp/out.txt" 2>&1 &
 app=$!
-window=$(timeout 30 xdotool search --sync --onlyvisible --name "^Scour: default$" | head -1)
+window=$(timeout 30 xdotool search --sync --onlyvisible --name "^Scour: valley$" | head -1)
 [ -n "$window" ] || { echo "no window"; cat "$tmp/out.txt"; exit 1; }
 xdotool windowmove --sync "$window" 0 0
 sleep 4  # the replay's frame 3 turns the source tool on

@@ -50,6 +50,20 @@ assert all(len(r.split(",")) == len(head) for r in rows)
 assert float(rows[-1].split(",")[1]) == s["sim_time_s"] or abs(float(rows[-1].split(",")[1]) - s["sim_time_s"]) < 1e-8
 print("run outputs ok")
 PY
+# The default scene carves: at a third of its particles and half the demo's water, a cut of
+# centimetres where the source pours in, the guard quiet and the ledger closed (issue 16).
+"$scour" run default --scale 0.3 --time 1.5 --threads 2 --out "$tmp/default" >/dev/null
+python3 - "$tmp/default" <<'PY'
+import json, os, sys
+s = json.load(open(os.path.join(sys.argv[1], "summary.json")))
+assert s["clock"]["factor"] == 100 and s["clock"]["morphological_s"] > 90, s["clock"]
+assert s["bed_guard"]["lowered"] == 0, s["bed_guard"]
+t = s["terrain_change"]
+assert t["max_erosion_m"] > 0.03 and t["eroded_m3"] > t["deposited_m3"] > 0, t
+assert s["soil"]["relative_error"] < 1e-12, s["soil"]
+assert s["invariants"]["nan"] == 0 and s["invariants"]["escaped"] == 0
+print("default scene carves %.1f cm" % (100 * t["max_erosion_m"]))
+PY
 # The geologic clock and the wall-time budget: a run that ends on --wall-time writes every output
 # and says why it stopped; the bed's clock is N times the water's after the spin-up, and the
 # ledger (with what the speed-up added) closes.

@@ -26,7 +26,7 @@ Worst runChecked(World& w, int steps) {
 }  // namespace
 
 TEST_CASE("a river closes the soil budget over 2,000 steps", "[budget][erosion]") {
-  Scene s = makePreset("default", 0.5);
+  Scene s = makePreset("valley", 0.5);
   REQUIRE(s.desc.effects.erosion);
   REQUIRE(s.desc.effects.deposition);
   REQUIRE(s.desc.effects.settling);
@@ -51,7 +51,7 @@ TEST_CASE("a river closes the soil budget over 2,000 steps", "[budget][erosion]"
 }
 
 TEST_CASE("saturation: C never passes C_max and soil is still conserved", "[budget][erosion]") {
-  Scene s = makePreset("default", 0.25);
+  Scene s = makePreset("valley", 0.25);
   s.desc.params.k_eps = 1000.0;  // 10,000× the paper's: every contact wants to fill its particle
   s.desc.params.c_max = 0.05;
   World w(s.desc);

@@ -13,7 +13,7 @@ using namespace scour;
 namespace {
 
 Scene river(double factor, double spinup = 0.0, double bound = 1.0) {
-  SceneSpec spec = presetSpec("default", 0.3);
+  SceneSpec spec = presetSpec("valley", 0.3);
   spec.params.morphological_factor = factor;
   spec.params.morphological_spinup = spinup;
   spec.params.max_bed_step = bound;

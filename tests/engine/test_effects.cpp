@@ -18,7 +18,7 @@ World stepped(SceneSpec spec, int steps) {
 }  // namespace
 
 TEST_CASE("passes of effects that are off never run", "[effects]") {
-  const SceneSpec river = presetSpec("default", 0.2);
+  const SceneSpec river = presetSpec("valley", 0.2);
   const int n = 20;
   {
     const World w = stepped(river, n);  // everything on: every pass runs
@@ -92,7 +92,7 @@ TEST_CASE("the sediment-only scene runs without the fluid passes", "[effects]") 
 }
 
 TEST_CASE("live edits: parameters, sources, sinks and the water brush", "[effects][edits]") {
-  Scene s = makePreset("default", 0.2);
+  Scene s = makePreset("valley", 0.2);
   World w(s.desc);
   w.step();
   // Parameters: a valid change applies; the particle-shaping ones are refused.

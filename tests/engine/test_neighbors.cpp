@@ -187,7 +187,7 @@ double maxDifference(const World& a, const World& b) {
 // spacing; a wrong or missing neighbor would move particles by a visible fraction of Δs.
 // Measured: 3e-6 Δs (dam break) and 4e-6 Δs (default river) after 50 steps.
 TEST_CASE("a kd-tree run follows the grid run to rounding", "[neighbors][kdtree]") {
-  for (const char* preset : {"dambreak", "default"}) {
+  for (const char* preset : {"dambreak", "valley"}) {
     INFO(preset);
     Scene s = makePreset(preset, 0.3);
     World grid(s.desc);

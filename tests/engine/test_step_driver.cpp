@@ -8,7 +8,7 @@
 using namespace scour;
 
 TEST_CASE("the step driver runs, times and stops as the caller asks", "[engine][driver]") {
-  const Scene s = makePreset("default", 0.05);
+  const Scene s = makePreset("valley", 0.05);
   World driven(s.desc), looped(s.desc);
   double passes = 0, groups = 0;
   long seen = 0;
@@ -50,7 +50,7 @@ TEST_CASE("the step driver says which way a run stopped", "[engine][driver]") {
   CHECK_THAT(broken.message, Catch::Contains("step ") && Catch::Contains("particle "));
   CHECK(broken.describe() == "invariant violated at " + broken.message);
   // What the caller does after a step (an output, say) can end the run too.
-  World fine(makePreset("default", 0.05).desc);
+  World fine(makePreset("valley", 0.05).desc);
   const RunEnd failed = runSteps(fine, 10, [&](const StepRecord& r) {
     if (r.stats.step == 3) throw std::runtime_error("disk full");
   });

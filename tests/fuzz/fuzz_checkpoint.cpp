@@ -20,7 +20,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   }();
   // One World, put back to its saved start before every input (building one per input would be
   // a hundred times slower), so each input is read from the same state.
-  static World w(makePreset("default", 0.05).desc);
+  static World w(makePreset("valley", 0.05).desc);
   static const std::string start = [] {
     std::ostringstream o;
     w.saveState(o);

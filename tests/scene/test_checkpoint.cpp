@@ -56,7 +56,7 @@ TEST_CASE("a resumed run reaches the same state hash as the uninterrupted one", 
   };
   // default: water, source, sink, friction, every erosion pass, a Z-order reorder after the
   // checkpoint (every 16 steps); rain: drops still to come; settling: the frozen lattice.
-  for (Case c : {Case{"default", 0.3, 37, 90}, Case{"rain", 0.5, 25, 60}, Case{"settling", 1.0, 20, 50}}) {
+  for (Case c : {Case{"valley", 0.3, 37, 90}, Case{"rain", 0.5, 25, 60}, Case{"settling", 1.0, 20, 50}}) {
     INFO(c.preset);
     const SceneSpec spec = presetSpec(c.preset, c.scale);
     const fs::path file = dir / (std::string(c.preset) + ".ckpt");
@@ -72,7 +72,7 @@ TEST_CASE("a resumed run reaches the same state hash as the uninterrupted one", 
 TEST_CASE("damaged checkpoints are refused with the reason", "[checkpoint]") {
   const fs::path dir = tempDir();
   const fs::path good = dir / "good.ckpt";
-  runWithCheckpoint(presetSpec("default", 0.2), 5, 5, good);
+  runWithCheckpoint(presetSpec("valley", 0.2), 5, 5, good);
   const std::string bytes = readAll(good);
   auto refuse = [&](const std::string& content) {
     const fs::path bad = dir / "bad.ckpt";

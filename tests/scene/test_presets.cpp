@@ -120,16 +120,30 @@ TEST_CASE("every built-in scene is its file in assets/scenes/, read by the scene
     CHECK(b.stress == (b.spec.stress.duration > 0));  // the stress scenes say how long they run
   }
   CHECK(presets == presetList().size());
-  CHECK(presets == 11);
+  CHECK(presets == 12);
   CHECK(stress == stressSceneNames().size());
   CHECK(stress == 22);
   REQUIRE_THROWS_WITH(presetSpec("nosuch"), Catch::StartsWith("unknown scene 'nosuch' (built-in scenes: block, canyon,") &&
                                                 Catch::Contains("stress-cliffs"));
 }
 
+TEST_CASE("the default scene is a river worth showing: a fine grid, a source, the speed-up on", "[presets][builtin]") {
+  // What a newcomer sees first (issue 16): at least 256 vertices along the river, finer than
+  // the water, a source and a lake at its foot, and the bed at 100 times the water's clock
+  // after the flow has settled. tests/cli/test_run_outputs.sh runs it and measures the cut.
+  const Scene d = buildScene(presetSpec("default"));
+  CHECK(d.desc.terrain.nx() >= 256);
+  CHECK(d.desc.terrain.dx() < d.spec.params.spacing);
+  CHECK(d.spec.sources.size() == 1);
+  CHECK(d.spec.params.morphological_factor == 100);
+  CHECK(d.spec.params.morphological_spinup == 0.5);
+  CHECK(d.spec.has_camera);
+  CHECK(d.desc.particles.size() > 500);  // the lake
+}
+
 TEST_CASE("each scene's scaling rule sets what --scale does", "[presets][builtin]") {
   // spacing: Δs / ∛scale, nothing else.
-  const SceneSpec river = presetSpec("default"), small = presetSpec("default", 0.125);
+  const SceneSpec river = presetSpec("valley"), small = presetSpec("valley", 0.125);
   CHECK(small.params.spacing == Approx(2 * river.params.spacing));
   CHECK(specToJson(small)["terrain"] == specToJson(river)["terrain"]);
   // fixed: the lattice is the experiment.
@@ -157,7 +171,7 @@ TEST_CASE("each scene's scaling rule sets what --scale does", "[presets][builtin
   }
   CHECK(double(buildScene(presetSpec("block", 0.25)).desc.particles.size()) ==
         Approx(0.25 * 136000).epsilon(0.05));
-  REQUIRE_THROWS_WITH(presetSpec("default", 0.0), "--scale must be a positive number");
+  REQUIRE_THROWS_WITH(presetSpec("valley", 0.0), "--scale must be a positive number");
 }
 
 TEST_CASE("every number's slider spans what a hand can drag and what the built-in scenes use",

@@ -28,7 +28,7 @@ TEST_CASE("every preset round-trips through its JSON", "[scene]") {
 }
 
 TEST_CASE("the reader names the field, what it expected and what it found", "[scene]") {
-  json base = sceneToJson(makePreset("default", 0.3));
+  json base = sceneToJson(makePreset("valley", 0.3));
   base.erase("built");
   auto error = [&](const std::function<void(json&)>& edit) {
     json j = base;
@@ -66,7 +66,7 @@ TEST_CASE("the reader names the field, what it expected and what it found", "[sc
   // A block filled above the terrain is counted once the terrain is built (buildScene).
   CHECK(error([](json& j) { j["params"]["fluid"]["spacing"] = 1e-4, j["sources"] = json::array(); }) ==
         "(accepted)");
-  SceneSpec fine = presetSpec("default", 0.3);
+  SceneSpec fine = presetSpec("valley", 0.3);
   fine.params.spacing = 1e-4, fine.sources.clear();
   CHECK_THROWS_WITH(buildScene(fine), Catch::Contains("water.blocks: ") &&
                                           Catch::Contains("particles at spacing 0.0001 m") &&
