@@ -268,7 +268,8 @@ class World {
   /// Sediment concentration C of particle i.
   double concentration(size_t i) const { return fluid_.sed[i] / sediment_.volume; }
 
-  /// FNV-1a over particle count, positions, velocities, heights and time.
+  /// FNV-1a over particle count, positions, velocities, sediment, heights and time, the volumes
+  /// waiting for their triangles and the bed's clock (its time and the factor in effect).
   uint64_t stateHash() const;
   /// Everything a later step reads that the description does not determine: particles, terrain,
   /// boundary particles and active tiles, source and rain progress, time, counters. A World

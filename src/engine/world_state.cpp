@@ -26,6 +26,13 @@ uint64_t World::stateHash() const {
   mix(fluid_.sed.data(), n * sizeof(double));
   mix(terrain_.heights().data(), terrain_.heights().size() * sizeof(double));
   mix(&time_, sizeof time_);
+  // The soil waiting for its triangle (sediment.h), in the state's order, and the bed's clock.
+  for (int t : accumulator_.touched) {
+    mix(&t, sizeof t);
+    mix(&accumulator_.volume[size_t(t)], sizeof(double));
+  }
+  mix(&morphTime_, sizeof morphTime_);
+  mix(&factor_, sizeof factor_);
   return h;
 }
 
