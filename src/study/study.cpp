@@ -223,12 +223,12 @@ double rms(const std::vector<double>& a, const std::vector<double>& b = {}) {
 
 std::string fmt(double v, int precision = 3);
 
-// The geologic clock (model.md, "two clocks"): the default river run to the same bed time at
-// growing N, after the same spin-up at N = 1 (the same state at its end, bit for bit). Error: the
+// The geologic clock (model.md, "two clocks"): the valley river (the default scene of earlier
+// versions) run to the same bed time at growing N, after the same spin-up at N = 1 (the same state at its end, bit for bit). Error: the
 // RMS difference of the height change since the spin-up against N = 1's, over N = 1's RMS height
 // change since the spin-up; cost: wall seconds per second of bed time.
 std::vector<StudyRow> morphologicalFactor(bool quick) {
-  SceneSpec base = presetSpec("default", quick ? 0.25 : 1.0);
+  SceneSpec base = presetSpec("valley", quick ? 0.25 : 1.0);
   const double spinup = quick ? 0.5 : 1.0, bedTime = quick ? 0.5 : 2.0;
   base.params.morphological_spinup = spinup;
   std::vector<StudyRow> rows;
@@ -262,7 +262,7 @@ std::vector<StudyRow> morphologicalFactor(bool quick) {
   return rows;
 }
 
-// The carved terrain against resolution: the default river at four particle spacings for the
+// The carved terrain against resolution: the valley river at four particle spacings for the
 // same water time, against the finest: the eroded volume, and the RMS height change.
 std::vector<StudyRow> erosionSpacing(bool quick) {
   const double t = quick ? 0.3 : 1.0;
@@ -270,7 +270,7 @@ std::vector<StudyRow> erosionSpacing(bool quick) {
                                            : std::vector<double>{0.25, 0.5, 1.0, 2.0};
   std::vector<std::tuple<std::string, Run, BedChange, double, long>> runs;
   for (double sc : scales) {
-    const SceneSpec s = presetSpec("default", sc);
+    const SceneSpec s = presetSpec("valley", sc);
     World w(buildScene(s).desc);
     const Run run = drive(w, [&] { return w.time() >= t - 1e-12; }, [] {});
     runs.emplace_back("Δs = " + fmt(s.params.spacing * 100) + " cm", run, bedChange(w), w.time(),

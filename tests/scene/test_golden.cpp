@@ -28,7 +28,7 @@ struct Golden {
 // sound speed in the CFL step and the wall envelope); the hashes again when the hash came to cover
 // the volumes waiting for their triangles and the bed's clock (the soil budgets unchanged).
 const Golden kGolden[] = {
-    {"default", 0.3, 100, 0x2df78d662cb2375eULL, 0x1.9747eba590d81p-1, 0x1.07a660099009ep-23},
+    {"default", 0.3, 100, 0x2bc038662ad061aeULL, 0x1.9747eba590d81p-1, 0x1.07a660099009ep-23},
     {"valley", 0.3, 100, 0xb2d488a88cf4ba9dULL, 0x1.47e26fd9df38fp-1, 0x1.266d84755ee81p-21},
     {"dambreak", 0.3, 100, 0xb897302b4d5f935dULL, -0x1.1937a72937aa2p-28, 0x1.1937a72937aa9p-28},
     {"hydrostatic", 0.3, 100, 0xdc79206cb9fa7c89ULL, -0x1.c7fc75ac3596cp-28, 0x1.c7fc75ac35969p-28},
@@ -59,6 +59,9 @@ TEST_CASE("every preset reaches its recorded state hash and soil budget", "[gold
     SceneSpec spec = presetSpec(g.preset, g.scale);
     Effects& fx = spec.effects;
     fx.erosion = fx.settling = fx.diffusion = fx.deposition = true;
+    // The bed on the water's clock (the presets' own speed-up waits out a spin-up longer than
+    // most of these runs anyway): N = 1 is the model as it was, bit for bit (issue 16).
+    spec.params.morphological_factor = 1;
     Scene s = buildScene(spec);
     World w(s.desc);
     for (int k = 0; k < g.steps; ++k) w.step();
