@@ -30,6 +30,7 @@ Command addBenchCommand(CLI::App& app);
 Command addRenderCommand(CLI::App& app);
 Command addStressCommand(CLI::App& app);
 Command addStudyCommand(CLI::App& app);
+Command addExportCommand(CLI::App& app);
 
 /// Shared by run and bench: builds the scene and applies `--set key=value` overrides.
 Scene loadScene(const std::string& name, double scale, long particles,

@@ -1,5 +1,5 @@
 // scour: the one binary. No subcommand: the window; subcommands: run, bench, render, stress,
-// study, presets.
+// study, export, presets.
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
@@ -43,6 +43,7 @@ int main(int argc, char** argv) {
   Command render = addRenderCommand(app);
   Command stress = addStressCommand(app);
   Command study = addStudyCommand(app);
+  Command exportMaps = addExportCommand(app);
   CLI::App* presets = app.add_subcommand("presets", "List the built-in scenes, one per line");
   try {
     app.parse(argc, argv);
@@ -65,6 +66,7 @@ int main(int argc, char** argv) {
     if (app.got_subcommand("render")) return render();
     if (app.got_subcommand("stress")) return stress();
     if (app.got_subcommand("study")) return study();
+    if (app.got_subcommand("export")) return exportMaps();
     // The window.
     std::tie(window.width, window.height) = parseSize(windowSize, 64);
     if (!window.screenshot.empty()) requirePng("--screenshot", window.screenshot);

@@ -94,6 +94,7 @@ struct RunOptions {
   long checkpointEvery = 0;
   std::string resume;
   long framesEvery = 0;
+  std::string maps = "none";  ///< erosion maps written at the end (parseMapNames)
   std::string timelapse;  ///< "K" steps or "Ss" seconds of bed time between pictures
   std::string timelapseVideo = "mp4";
   int timelapseFps = 24;
@@ -133,6 +134,12 @@ int runScene(const RunOptions& o) {
     }
   }
   // Pictures: the GL context and renderer are made (and their options checked) before any output.
+  std::vector<std::string> maps;
+  try {
+    maps = parseMapNames("--maps", o.maps);
+  } catch (const std::invalid_argument& e) {
+    throw InputError(e.what());
+  }
   std::unique_ptr<FrameWriter> frames;
   std::optional<Timelapse> timelapse;
   TimelapseOptions lapse;
@@ -208,7 +215,7 @@ int runScene(const RunOptions& o) {
       std::cerr << line << "\n";
     }
   };
-  RunOutputs outputs(dir, {o.particlesEvery, o.metricsEvery, o.checkpointEvery, o.mesh}, scene);
+  RunOutputs outputs(dir, {o.particlesEvery, o.metricsEvery, o.checkpointEvery, o.mesh, maps}, scene);
   outputs.start(*world);
   if (o.framesEvery > 0) frames->write(makeFrame(*world), (dir / RunOutputs::frameName(world->steps())).string());
   lapsePicture(false);
@@ -311,6 +318,7 @@ Command addRunCommand(CLI::App& app) {
   c->add_option("--metrics-every", o->metricsEvery, "Write a metrics.csv row every K steps (default 10)")
       ->check(kPositive);
   c->add_flag("--mesh", o->mesh, "Also write the final terrain as mesh.obj (with normals)");
+  c->add_option("--maps", o->maps, "Erosion maps written at the end into maps/: none (default), all, or a list: wear,deposition,sediment");
   auto* sets = c->add_option("--set", o->sets, "Override a parameter: key=value (repeatable)");
   c->add_option("--checkpoint-every", o->checkpointEvery,
                 "Write checkpoint_<step>.ckpt every K steps (resume with --resume)")

@@ -5,6 +5,7 @@
 #include <Eigen/Geometry>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -97,6 +98,31 @@ std::pair<double, double> writeHeightPng16(const std::filesystem::path& path,
       std::memcpy(&rows[(size_t(k) * hf.nx() + i) * 2], &v, 2);
     }
   writeAtomically(path, [&](std::ostream& out) { writePng(out, hf.nx(), hf.nz(), 1, 16, rows); });
+  return {lo, hi};
+}
+
+double writeMapPng16(const std::filesystem::path& path, int nx, int nz, const std::vector<double>& values) {
+  double top = 0.0;
+  for (double v : values) top = std::max(top, v);
+  std::vector<unsigned char> rows(size_t(nx) * nz * 2, 0);
+  if (top > 0)
+    for (size_t k = 0; k < values.size(); ++k) {
+      const auto v = uint16_t(std::lround(std::clamp(values[k] / top, 0.0, 1.0) * 65535.0));
+      std::memcpy(&rows[k * 2], &v, 2);
+    }
+  writeAtomically(path, [&](std::ostream& out) { writePng(out, nx, nz, 1, 16, rows); });
+  return top;
+}
+
+std::pair<double, double> writeHeightR16(const std::filesystem::path& path, const Heightfield& hf) {
+  const double lo = hf.minHeight(), hi = hf.maxHeight(), range = hi > lo ? hi - lo : 1.0;
+  writeAtomically(path, [&](std::ostream& out) {
+    for (double h : hf.heights()) {
+      const auto v = uint16_t(std::lround((h - lo) / range * 65535.0));
+      const unsigned char le[2] = {static_cast<unsigned char>(v & 0xff), static_cast<unsigned char>(v >> 8)};
+      out.write(reinterpret_cast<const char*>(le), 2);
+    }
+  });
   return {lo, hi};
 }
 

@@ -30,6 +30,14 @@ void writeParticlesPly(const std::filesystem::path& path, const Fluid& f, double
 /// 16-bit greyscale PNG, v = round((h − lo) / (hi − lo) · 65535). Returns {lo, hi}.
 std::pair<double, double> writeHeightPng16(const std::filesystem::path& path, const Heightfield& hf);
 
+/// A map on a grid as a 16-bit greyscale PNG, v = round(value / top · 65535) with top the largest
+/// value (all 0 when it is 0; negative values are written as 0). Returns top.
+double writeMapPng16(const std::filesystem::path& path, int nx, int nz, const std::vector<double>& values);
+
+/// Unreal Engine's 16-bit raw heightmap: uint16 little-endian, row-major as the PNG, v =
+/// round((h − lo) / (hi − lo) · 65535). Returns {lo, hi}.
+std::pair<double, double> writeHeightR16(const std::filesystem::path& path, const Heightfield& hf);
+
 /// Raw float32, little-endian, row-major (rows of nx values, nz rows; same order as the PNG).
 void writeHeightRaw(const std::filesystem::path& path, const Heightfield& hf);
 

@@ -2,9 +2,11 @@
 
 #include <omp.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <iomanip>
 
+#include "engine/maps.h"
 #include "engine/sediment.h"
 #include "scene/checkpoint.h"
 #include "scene/output.h"
@@ -13,6 +15,7 @@
 namespace scour {
 
 using nlohmann::json;
+namespace fs = std::filesystem;
 
 namespace {
 
@@ -73,13 +76,57 @@ void RunOutputs::afterStep(const World& w, const StepRecord& r) {
 }
 
 // Heights now and their change since the start, with how to read them back.
+json writeErosionMaps(const fs::path& dir, const World& w, const std::vector<std::string>& names) {
+  std::error_code ec;
+  fs::create_directories(dir, ec);
+  if (ec) throw std::runtime_error("cannot create directory '" + dir.string() + "': " + ec.message());
+  const Heightfield& hf = w.terrain();
+  json out = json::object();
+  for (const TerrainMap& m : erosionMaps(w)) {
+    if (std::find(names.begin(), names.end(), m.name) == names.end()) continue;
+    const double top = writeMapPng16(dir / (m.name + ".png"), hf.nx(), hf.nz(), m.values);
+    out[m.name] = {{"file", m.name + ".png"},
+                   {"unit", m.unit},
+                   {"meaning", m.meaning},
+                   {"white", top},
+                   {"mapping", "value = v / 65535 * white; row k is z = z0 + k dz, column i is x = x0 + i dx"}};
+  }
+  for (const std::string& n : names)
+    if (!out.contains(n)) throw std::runtime_error("no erosion map called '" + n + "'");
+  const std::string text = out.dump(2) + "\n";
+  writeAtomically(dir / "maps.json", [&](std::ostream& o) { o << text; });
+  return out;
+}
+
+std::vector<std::string> parseMapNames(const std::string& flag, const std::string& text) {
+  const std::vector<std::string>& all = erosionMapNames();
+  if (text == "all") return all;
+  if (text == "none") return {};
+  std::vector<std::string> names;
+  size_t from = 0;
+  while (from <= text.size()) {
+    const size_t to = std::min(text.find(',', from), text.size());
+    const std::string name = text.substr(from, to - from);
+    if (std::find(all.begin(), all.end(), name) == all.end()) {
+      std::string list;
+      for (const std::string& a : all) list += (list.empty() ? "" : ", ") + a;
+      throw std::invalid_argument(flag + ": no map called '" + name + "' (there is " + list + ", or all, or none)");
+    }
+    if (std::find(names.begin(), names.end(), name) == names.end()) names.push_back(name);
+    from = to + 1;
+  }
+  return names;
+}
+
 json RunOutputs::exports(const World& w) {
   const Heightfield hf = w.settledTerrain();
   auto [lo, hi] = writeHeightPng16(dir_ / "height.png", hf);
   writeHeightRaw(dir_ / "height.r32", hf);
   const double changeScale = writeErosionPng(dir_ / "erosion.png", hf, w.heightChange());
   if (options_.mesh) writeTerrainObj(dir_ / "mesh.obj", hf);
-  return {{"height_png",
+  json maps = options_.maps.empty() ? json(nullptr) : writeErosionMaps(dir_ / "maps", w, options_.maps);
+  return {{"maps", maps},
+          {"height_png",
            {{"file", "height.png"},
             {"min_m", lo},
             {"max_m", hi},

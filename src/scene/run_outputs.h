@@ -14,11 +14,21 @@
 
 namespace scour {
 
+/// The erosion maps named (engine/maps.h) as DIR/<name>.png (writeMapPng16), and DIR/maps.json
+/// saying for each its file, unit, meaning and the value white stands for; DIR is made. Returns
+/// maps.json's object. std::runtime_error for an unknown name.
+nlohmann::json writeErosionMaps(const std::filesystem::path& dir, const World& w,
+                                const std::vector<std::string>& names);
+/// "all", "none" or a comma-separated list of erosionMapNames(); std::invalid_argument naming
+/// `flag` otherwise.
+std::vector<std::string> parseMapNames(const std::string& flag, const std::string& text);
+
 struct RunOutputOptions {
   long particlesEvery = 0;   ///< > 0: particles_<step>.ply every this many steps (and at 0)
   long metricsEvery = 10;    ///< a metrics.csv row every this many steps (and at 0)
   long checkpointEvery = 0;  ///< > 0: checkpoint_<step>.ckpt every this many steps
   bool mesh = false;         ///< also mesh.obj at the end
+  std::vector<std::string> maps;  ///< erosion maps to write at the end into maps/
 };
 
 class RunOutputs {

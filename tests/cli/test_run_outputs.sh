@@ -64,6 +64,39 @@ assert s["soil"]["relative_error"] < 1e-12, s["soil"]
 assert s["invariants"]["nan"] == 0 and s["invariants"]["escaped"] == 0
 print("default scene carves %.1f cm" % (100 * t["max_erosion_m"]))
 PY
+# Erosion maps (issue 17): run --maps writes them at the end; scour export writes the same maps
+# and heights from the run's checkpoint (to the byte), and heights as Unreal's .r16.
+"$scour" run valley --scale 0.3 --steps 200 --maps all --checkpoint-every 200 --out "$tmp/maps" \
+  --set erosion.morphological_factor=20 --set erosion.morphological_spinup=0.02 >/dev/null
+"$scour" export "$tmp/maps/checkpoint_000200.ckpt" --out "$tmp/exp" >/dev/null
+"$scour" export "$tmp/maps/checkpoint_000200.ckpt" --out "$tmp/exp16" --format r16 --maps wear,sediment >/dev/null
+for f in wear deposition sediment; do cmp "$tmp/maps/maps/$f.png" "$tmp/exp/maps/$f.png"; done
+cmp "$tmp/maps/height.png" "$tmp/exp/height.png" && cmp "$tmp/maps/height.r32" "$tmp/exp16/height.r32"
+python3 - "$tmp" <<'PY'
+import json, os, struct, sys
+d = sys.argv[1]
+s = json.load(open(os.path.join(d, "maps", "summary.json")))
+m = s["exports"]["maps"]
+assert sorted(m) == ["deposition", "sediment", "wear"], m
+# White in the wear map is the deepest cut summary.json reports.
+assert m["wear"]["white"] == s["terrain_change"]["max_erosion_m"], (m["wear"], s["terrain_change"])
+assert m["deposition"]["white"] == s["terrain_change"]["max_deposition_m"]
+assert m["wear"]["unit"] == "m" and m["sediment"]["white"] > 0
+e = json.load(open(os.path.join(d, "exp16", "export.json")))
+assert e["step"] == 200 and sorted(e["maps"]) == ["sediment", "wear"], e
+h = e["heights"]
+nx, nz, lo, hi = h["nx"], h["nz"], h["min_m"], h["max_m"]
+r16 = open(os.path.join(d, "exp16", "height.r16"), "rb").read()
+r32 = open(os.path.join(d, "exp16", "height.r32"), "rb").read()
+assert len(r16) == 2 * nx * nz and len(r32) == 4 * nx * nz
+a = struct.unpack("<%dH" % (nx * nz), r16)
+b = struct.unpack("<%df" % (nx * nz), r32)
+worst = max(abs(lo + v / 65535 * (hi - lo) - z) for v, z in zip(a, b))
+assert worst <= 0.5 / 65535 * (hi - lo) + 1e-6, worst
+assert abs(h["unreal_scale_cm"][2] - (hi - lo) * 100 / 512) < 1e-12
+assert not os.path.exists(os.path.join(d, "exp16", "maps", "deposition.png"))
+print("maps and export ok: deepest cut %.3g mm" % (1000 * s["terrain_change"]["max_erosion_m"]))
+PY
 # The geologic clock and the wall-time budget: a run that ends on --wall-time writes every output
 # and says why it stopped; the bed's clock is N times the water's after the spin-up, and the
 # ledger (with what the speed-up added) closes.

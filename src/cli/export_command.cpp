@@ -1,0 +1,92 @@
+// scour export: the heights and the erosion maps of a checkpoint, in the formats an engine takes
+// (docs/exports.md), so a long run is exported once it is done, and again in another format later.
+#include <cmath>
+#include <filesystem>
+#include <iostream>
+#include <nlohmann/json.hpp>
+
+#include "cli/commands.h"
+#include "scene/checkpoint.h"
+#include "scene/output.h"
+#include "scene/run_outputs.h"
+
+namespace scour {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+namespace {
+
+struct ExportOptions {
+  std::string checkpoint, out, maps = "all", format = "png16";
+};
+
+int exportCheckpoint(const ExportOptions& o) {
+  if (o.format != "png16" && o.format != "r16")
+    throw InputError("--format: expected png16 or r16, found '" + o.format + "'");
+  std::vector<std::string> maps;
+  try {
+    maps = parseMapNames("--maps", o.maps);
+  } catch (const std::invalid_argument& e) {
+    throw InputError(e.what());
+  }
+  Scene scene;
+  std::unique_ptr<World> world;
+  try {
+    world = std::make_unique<World>(resumeWorld(readCheckpoint(o.checkpoint), scene));
+  } catch (const CheckpointError& e) {
+    throw InputError(e.what());
+  } catch (const SceneError& e) {
+    throw InputError(o.checkpoint + ": " + e.what());
+  } catch (const TerrainError& e) {
+    throw InputError(o.checkpoint + ": terrain: " + e.what());
+  } catch (const std::invalid_argument& e) {
+    throw InputError(o.checkpoint + ": " + e.what());
+  }
+  std::error_code ec;
+  fs::create_directories(o.out, ec);
+  if (ec || !fs::is_directory(o.out))
+    throw InputError("--out: cannot create directory '" + o.out + "'" + (ec ? ": " + ec.message() : ""));
+  const fs::path dir(o.out);
+  const Heightfield hf = world->settledTerrain();
+  json heights = {{"nx", hf.nx()}, {"nz", hf.nz()}, {"dx_m", hf.dx()}, {"dz_m", hf.dz()},
+                  {"x0_m", hf.x0()}, {"z0_m", hf.z0()}};
+  if (o.format == "png16") {
+    const auto [lo, hi] = writeHeightPng16(dir / "height.png", hf);
+    heights["file"] = "height.png", heights["min_m"] = lo, heights["max_m"] = hi;
+    heights["mapping"] = "h = min_m + v / 65535 * (max_m - min_m); row k is z = z0 + k dz, column i is x = x0 + i dx";
+  } else {
+    const auto [lo, hi] = writeHeightR16(dir / "height.r16", hf);
+    heights["file"] = "height.r16", heights["min_m"] = lo, heights["max_m"] = hi;
+    heights["mapping"] = "uint16 little-endian, nz rows of nx; h = min_m + v / 65535 * (max_m - min_m)";
+    // Unreal's landscape spans 512 × Z scale cm over the 65,536 levels; X and Y scale are the
+    // grid's spacing in cm.
+    heights["unreal_scale_cm"] = {hf.dx() * 100, hf.dz() * 100, (hi - lo) * 100 / 512};
+  }
+  writeHeightRaw(dir / "height.r32", hf);
+  json summary = {{"checkpoint", o.checkpoint},
+                  {"step", world->steps()},
+                  {"hydraulic_s", world->time()},
+                  {"morphological_s", world->morphologicalTime()},
+                  {"heights", heights},
+                  {"height_r32", "float32 little-endian, nz rows of nx heights [m]"},
+                  {"maps", maps.empty() ? json(nullptr) : writeErosionMaps(dir / "maps", *world, maps)}};
+  writeAtomically(dir / "export.json", [&](std::ostream& out) { out << summary.dump(2) << "\n"; });
+  std::cout << "exported step " << world->steps() << " of " << o.checkpoint << " (" << hf.nx() << " x "
+            << hf.nz() << " heights, " << maps.size() << " maps) to " << dir.string() << "\n";
+  return kExitOk;
+}
+
+}  // namespace
+
+Command addExportCommand(CLI::App& app) {
+  auto o = std::make_shared<ExportOptions>();
+  CLI::App* c = app.add_subcommand("export", "Write a checkpoint's heights and erosion maps for an engine");
+  c->add_option("checkpoint", o->checkpoint, "A checkpoint (.ckpt) of scour run")->required();
+  c->add_option("--out", o->out, "Output directory")->required();
+  c->add_option("--maps", o->maps, "Erosion maps: all (default), none, or a list: wear,deposition,sediment");
+  c->add_option("--format", o->format, "Heights as png16 (16-bit PNG; default) or r16 (Unreal's 16-bit raw)");
+  return [o] { return exportCheckpoint(*o); };
+}
+
+}  // namespace scour

@@ -1,0 +1,57 @@
+#include "engine/maps.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "engine/world.h"
+
+namespace scour {
+
+const std::vector<std::string>& erosionMapNames() {
+  static const std::vector<std::string> names = {"wear", "deposition", "sediment"};
+  return names;
+}
+
+namespace {
+
+// Each particle's sediment volume over the terrain's grid, by bilinear weights [m³ per vertex].
+std::vector<double> suspendedAtVertices(const World& w) {
+  const Heightfield& hf = w.terrain();
+  const int nx = hf.nx(), nz = hf.nz();
+  std::vector<double> at(size_t(nx) * nz, 0.0);
+  const Fluid& f = w.fluid();
+  for (size_t i = 0; i < f.size(); ++i) {
+    const double s = f.sed[i];
+    if (s == 0.0) continue;
+    const double u = std::clamp((double(f.x[i].x()) - hf.x0()) / hf.dx(), 0.0, double(nx - 1));
+    const double q = std::clamp((double(f.x[i].z()) - hf.z0()) / hf.dz(), 0.0, double(nz - 1));
+    const int i0 = std::min(int(u), nx - 2), k0 = std::min(int(q), nz - 2);
+    const double fu = u - i0, fq = q - k0;
+    const size_t v = size_t(k0) * nx + i0;
+    at[v] += s * (1 - fu) * (1 - fq);
+    at[v + 1] += s * fu * (1 - fq);
+    at[v + nx] += s * (1 - fu) * fq;
+    at[v + nx + 1] += s * fu * fq;
+  }
+  return at;
+}
+
+}  // namespace
+
+std::vector<TerrainMap> erosionMaps(const World& w) {
+  const std::vector<double> dh = w.heightChange();
+  const std::vector<double>& area = w.vertexArea();
+  TerrainMap wear{"wear", "m", "depth eroded since the start (the settled terrain)", {}};
+  TerrainMap deposition{"deposition", "m", "depth deposited since the start (the settled terrain)", {}};
+  TerrainMap sediment{"sediment", "m", "sediment suspended in the water above, as a depth of soil, now", {}};
+  wear.values.resize(dh.size()), deposition.values.resize(dh.size());
+  for (size_t v = 0; v < dh.size(); ++v) {
+    wear.values[v] = std::max(0.0, -dh[v]);
+    deposition.values[v] = std::max(0.0, dh[v]);
+  }
+  sediment.values = suspendedAtVertices(w);
+  for (size_t v = 0; v < area.size(); ++v) sediment.values[v] /= area[v];
+  return {std::move(wear), std::move(deposition), std::move(sediment)};
+}
+
+}  // namespace scour

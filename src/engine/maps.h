@@ -1,0 +1,33 @@
+#pragma once
+// Erosion maps on the terrain's grid, for texturing an eroded terrain in an engine (issue 17,
+// docs/exports.md): one value per vertex, row-major like the heights (row k is z = z0 + k·dz,
+// column i is x = x0 + i·dx). Each is consistent with the soil ledger by construction: Σ map ×
+// vertex area gives the eroded, deposited or suspended volume to rounding.
+
+#include <string>
+#include <vector>
+
+namespace scour {
+
+class World;
+
+struct TerrainMap {
+  std::string name;     ///< "wear", "deposition", "sediment"
+  std::string unit;     ///< of each value
+  std::string meaning;  ///< one line for a sidecar file or a panel
+  std::vector<double> values;
+};
+
+/// The maps' names, in the order erosionMaps returns them.
+const std::vector<std::string>& erosionMapNames();
+
+/// wear: the depth eroded at each vertex, max(0, −Δh) [m]; deposition: the depth deposited,
+/// max(0, Δh) [m], both of the settled terrain against the start (World::heightChange), so Σ
+/// wear·A_v is summary.json's eroded volume and Σ deposition·A_v its deposited volume;
+/// sediment: the sediment suspended above each vertex now, as a depth of soil [m] (each
+/// particle's sediment shared among the four corners of the grid cell under it by bilinear
+/// weights, over the corner's area A_v; a particle beyond the terrain's edge counts at the
+/// nearest point of it), so Σ sediment·A_v is the suspended volume.
+std::vector<TerrainMap> erosionMaps(const World& w);
+
+}  // namespace scour
