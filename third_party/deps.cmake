@@ -5,6 +5,8 @@ find_package(OpenMP REQUIRED)
 find_package(nlohmann_json 3.10 REQUIRED)
 find_package(CLI11 2.1 REQUIRED)
 find_package(PNG REQUIRED)
+# Float EXR heightmaps and maps (Debian libopenexr-dev).
+find_package(OpenEXR 3.1 REQUIRED CONFIG)
 # nanoflann (libnanoflann-dev, header-only): the kd-tree neighbor search, engine.neighbor_search.
 find_package(nanoflann 1.4 REQUIRED)
 

@@ -22,8 +22,8 @@ struct ExportOptions {
 };
 
 int exportCheckpoint(const ExportOptions& o) {
-  if (o.format != "png16" && o.format != "r16")
-    throw InputError("--format: expected png16 or r16, found '" + o.format + "'");
+  if (o.format != "png16" && o.format != "r16" && o.format != "exr")
+    throw InputError("--format: expected png16, r16 or exr, found '" + o.format + "'");
   std::vector<std::string> maps;
   try {
     maps = parseMapNames("--maps", o.maps);
@@ -55,6 +55,10 @@ int exportCheckpoint(const ExportOptions& o) {
     const auto [lo, hi] = writeHeightPng16(dir / "height.png", hf);
     heights["file"] = "height.png", heights["min_m"] = lo, heights["max_m"] = hi;
     heights["mapping"] = "h = min_m + v / 65535 * (max_m - min_m); row k is z = z0 + k dz, column i is x = x0 + i dx";
+  } else if (o.format == "exr") {
+    writeGridExr(dir / "height.exr", hf.nx(), hf.nz(), hf.heights());
+    heights["file"] = "height.exr", heights["min_m"] = hf.minHeight(), heights["max_m"] = hf.maxHeight();
+    heights["mapping"] = "float32 channel Y, the height in metres; row k is z = z0 + k dz, column i is x = x0 + i dx";
   } else {
     const auto [lo, hi] = writeHeightR16(dir / "height.r16", hf);
     heights["file"] = "height.r16", heights["min_m"] = lo, heights["max_m"] = hi;
@@ -70,7 +74,7 @@ int exportCheckpoint(const ExportOptions& o) {
                   {"morphological_s", world->morphologicalTime()},
                   {"heights", heights},
                   {"height_r32", "float32 little-endian, nz rows of nx heights [m]"},
-                  {"maps", maps.empty() ? json(nullptr) : writeErosionMaps(dir / "maps", *world, maps)}};
+                  {"maps", maps.empty() ? json(nullptr) : writeErosionMaps(dir / "maps", *world, maps, o.format == "exr")}};
   writeAtomically(dir / "export.json", [&](std::ostream& out) { out << summary.dump(2) << "\n"; });
   std::cout << "exported step " << world->steps() << " of " << o.checkpoint << " (" << hf.nx() << " x "
             << hf.nz() << " heights, " << maps.size() << " maps) to " << dir.string() << "\n";
@@ -85,7 +89,7 @@ Command addExportCommand(CLI::App& app) {
   c->add_option("checkpoint", o->checkpoint, "A checkpoint (.ckpt) of scour run")->required();
   c->add_option("--out", o->out, "Output directory")->required();
   c->add_option("--maps", o->maps, "Erosion maps: all (default), none, or a list: wear,deposition,sediment");
-  c->add_option("--format", o->format, "Heights as png16 (16-bit PNG; default) or r16 (Unreal's 16-bit raw)");
+  c->add_option("--format", o->format, "Heights (and maps) as png16 (16-bit PNG; default), r16 (Unreal's 16-bit raw heights, PNG maps) or exr (float32 OpenEXR)");
   return [o] { return exportCheckpoint(*o); };
 }
 

@@ -1,5 +1,10 @@
 #include "scene/output.h"
 
+#include <ImfChannelList.h>
+#include <ImfFrameBuffer.h>
+#include <ImfHeader.h>
+#include <ImfOutputFile.h>
+#include <ImfStdIO.h>
 #include <png.h>
 
 #include <Eigen/Geometry>
@@ -124,6 +129,25 @@ std::pair<double, double> writeHeightR16(const std::filesystem::path& path, cons
     }
   });
   return {lo, hi};
+}
+
+void writeGridExr(const std::filesystem::path& path, int nx, int nz, const std::vector<double>& values) {
+  std::vector<float> px(values.begin(), values.end());
+  Imf::StdOSStream stream;
+  try {
+    Imf::Header header(nx, nz);
+    header.compression() = Imf::ZIP_COMPRESSION;
+    header.channels().insert("Y", Imf::Channel(Imf::FLOAT));
+    Imf::OutputFile file(stream, header);
+    Imf::FrameBuffer fb;
+    fb.insert("Y", Imf::Slice(Imf::FLOAT, reinterpret_cast<char*>(px.data()), sizeof(float), size_t(nx) * sizeof(float)));
+    file.setFrameBuffer(fb);
+    file.writePixels(nz);
+  } catch (const std::exception& e) {
+    throw std::runtime_error(path.string() + ": cannot write the EXR image: " + e.what());
+  }
+  const std::string bytes = stream.str();
+  writeAtomically(path, [&](std::ostream& out) { out << bytes; });
 }
 
 void writeHeightRaw(const std::filesystem::path& path, const Heightfield& hf) {

@@ -38,6 +38,10 @@ double writeMapPng16(const std::filesystem::path& path, int nx, int nz, const st
 /// round((h − lo) / (hi − lo) · 65535). Returns {lo, hi}.
 std::pair<double, double> writeHeightR16(const std::filesystem::path& path, const Heightfield& hf);
 
+/// A grid of values as a float32 OpenEXR image with one channel, Y (ZIP compression), row k of the
+/// image the grid's row k. The values as float, unscaled: heights in metres, a map in its unit.
+void writeGridExr(const std::filesystem::path& path, int nx, int nz, const std::vector<double>& values);
+
 /// Raw float32, little-endian, row-major (rows of nx values, nz rows; same order as the PNG).
 void writeHeightRaw(const std::filesystem::path& path, const Heightfield& hf);
 

@@ -49,13 +49,15 @@ struct TerrainSpec {
   double riser = 0.15;     ///< terraces: fraction of a step taken by its riser
   double rim = 0.8;        ///< bowl: rim radius over half the shorter side
   NoiseSpec noise;
-  // heightmap: a greyscale PNG (8 or 16 bit) or raw float32 (.r32, needs raw_width/raw_height)
-  // or a built-in image ("builtin:srtm-grand-canyon"),
+  // heightmap: a greyscale PNG (8 or 16 bit), raw float32 (.r32, needs raw_width/raw_height),
+  // a float OpenEXR image (.exr, one channel) or a built-in image ("builtin:srtm-grand-canyon"),
   // cropped to [crop_x, crop_x + crop_w) × [crop_z, crop_z + crop_h) pixels (0 = whole image),
   // resampled bilinearly to the grid, and scaled so its lowest point is height_min and its
-  // highest height_max. Image rows run along +z, columns along +x.
+  // highest height_max (heights "scaled"), or its values kept as metres (heights "metres": float
+  // files only). Image rows run along +z, columns along +x.
   std::string file;          ///< resolved path (relative paths are taken from the scene file)
   double height_min = 0.0, height_max = 1.0;  ///< [m]
+  std::string heights = "scaled";  ///< "scaled" to [height_min, height_max], or "metres" as they are
   int crop_x = 0, crop_z = 0, crop_w = 0, crop_h = 0;  ///< [pixels]
   int raw_width = 0, raw_height = 0;  ///< .r32 only [pixels]
 };

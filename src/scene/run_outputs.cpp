@@ -76,7 +76,7 @@ void RunOutputs::afterStep(const World& w, const StepRecord& r) {
 }
 
 // Heights now and their change since the start, with how to read them back.
-json writeErosionMaps(const fs::path& dir, const World& w, const std::vector<std::string>& names) {
+json writeErosionMaps(const fs::path& dir, const World& w, const std::vector<std::string>& names, bool exr) {
   std::error_code ec;
   fs::create_directories(dir, ec);
   if (ec) throw std::runtime_error("cannot create directory '" + dir.string() + "': " + ec.message());
@@ -84,6 +84,14 @@ json writeErosionMaps(const fs::path& dir, const World& w, const std::vector<std
   json out = json::object();
   for (const TerrainMap& m : erosionMaps(w)) {
     if (std::find(names.begin(), names.end(), m.name) == names.end()) continue;
+    if (exr) {
+      writeGridExr(dir / (m.name + ".exr"), hf.nx(), hf.nz(), m.values);
+      out[m.name] = {{"file", m.name + ".exr"},
+                     {"unit", m.unit},
+                     {"meaning", m.meaning},
+                     {"mapping", "float32 channel Y, the value in its unit; row k is z = z0 + k dz, column i is x = x0 + i dx"}};
+      continue;
+    }
     const double top = writeMapPng16(dir / (m.name + ".png"), hf.nx(), hf.nz(), m.values);
     out[m.name] = {{"file", m.name + ".png"},
                    {"unit", m.unit},

@@ -317,6 +317,7 @@ json specToJson(const SceneSpec& s) {
     j["terrain"]["file"] = t.file;
     j["terrain"]["height_min"] = t.height_min;
     j["terrain"]["height_max"] = t.height_max;
+    if (t.heights != "scaled") j["terrain"]["heights"] = t.heights;
     j["terrain"]["crop"] = {t.crop_x, t.crop_z, t.crop_w, t.crop_h};
     if (t.raw_width > 0) j["terrain"]["raw_size"] = {t.raw_width, t.raw_height};
   }
@@ -452,6 +453,7 @@ SceneSpec specFromJson(const json& j, const std::string& file) {
       }
       s.terrain.height_min = t.number("height_min", s.terrain.height_min, -kBig, kBig);
       s.terrain.height_max = t.number("height_max", s.terrain.height_max, s.terrain.height_min, kBig);
+      s.terrain.heights = t.text("heights", s.terrain.heights, {"scaled", "metres"});
       if (t.has("crop")) {
         const json& c = t.raw("crop");
         if (!c.is_array() || c.size() != 4) t.fail("terrain.crop", "[x, z, width, height] in pixels", c);

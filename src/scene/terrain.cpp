@@ -1,10 +1,17 @@
 // Terrains: the procedural generators and heightmap images (files or built into the binary).
+#include <ImfChannelList.h>
+#include <ImfFrameBuffer.h>
+#include <ImfHeader.h>
+#include <ImfIO.h>
+#include <ImfInputFile.h>
+#include <ImfStdIO.h>
 #include <stb_image.h>
 
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <fstream>
+#include <sstream>
 
 #include "scene/assets.h"
 #include "scene/input_file.h"
@@ -93,11 +100,69 @@ Gray decodeImage(const std::string& f, const std::vector<unsigned char>& bytes) 
   return g;
 }
 
+bool endsWith(const std::string& s, const char* tail) {
+  const std::string t(tail);
+  return s.size() >= t.size() && s.compare(s.size() - t.size(), t.size(), t) == 0;
+}
+
+// A float OpenEXR image: its one channel (Y, or the first of R, G, B when it has those), any
+// pixel type, read as float. OpenEXR's own message for a file it cannot read.
+Gray readExr(const std::string& f) {
+  std::string bytes;
+  try {
+    bytes = readInputFile(f, "heightmap", size_t(1) << 30);
+  } catch (const InputFileError& e) {
+    throw TerrainError(e.what());
+  }
+  try {
+    Imf::StdISStream stream;
+    stream.str(bytes);
+    Imf::InputFile file(stream);
+    const Imath::Box2i win = file.header().dataWindow();
+    const long long w = 1LL * win.max.x - win.min.x + 1, h = 1LL * win.max.y - win.min.y + 1;
+    if (w < 2 || h < 2)
+      throw TerrainError(f + ": a " + std::to_string(w) + " × " + std::to_string(h) +
+                         " image: a heightmap needs at least 2 × 2 pixels");
+    if (w * h > kMaxPixels)
+      throw TerrainError(f + ": " + std::to_string(w) + " × " + std::to_string(h) +
+                         " pixels is more than this build reads");
+    // A header claiming far more pixels than compressed data could hold is not an image (as for PNG).
+    if (1.0 * w * h > kMaxPixelsPerByte * double(bytes.size()))
+      throw TerrainError(f + ": its header claims " + std::to_string(w) + " × " + std::to_string(h) +
+                         " pixels in " + std::to_string(bytes.size()) + " bytes, more than an EXR can hold");
+    const Imf::ChannelList& channels = file.header().channels();
+    std::string channel, names;
+    for (auto c = channels.begin(); c != channels.end(); ++c) names += (names.empty() ? "" : ", ") + std::string(c.name());
+    for (const char* want : {"Y", "R", "G", "B"})
+      if (channel.empty() && channels.findChannel(want)) channel = want;
+    if (channel.empty() && channels.begin() != channels.end() && ++channels.begin() == channels.end())
+      channel = channels.begin().name();
+    if (channel.empty())
+      throw TerrainError(f + ": expected one channel (Y) or R, G, B; found " + (names.empty() ? "none" : names));
+    Gray g;
+    g.w = int(w), g.h = int(h);
+    std::vector<float> px(size_t(w) * size_t(h));
+    Imf::FrameBuffer fb;
+    char* origin = reinterpret_cast<char*>(px.data() - (long long)win.min.x - (long long)win.min.y * w);
+    fb.insert(channel, Imf::Slice(Imf::FLOAT, origin, sizeof(float), size_t(w) * sizeof(float)));
+    file.setFrameBuffer(fb);
+    file.readPixels(win.min.y, win.max.y);
+    g.v.assign(px.begin(), px.end());
+    return g;
+  } catch (const TerrainError&) {
+    throw;
+  } catch (const std::exception& e) {
+    throw TerrainError(f + ": not a readable OpenEXR image (" + e.what() + ")");
+  }
+}
+
 Gray readHeightmap(const TerrainSpec& t) {
   const std::string& f = t.file;
   Gray g;
-  if (f.size() > 4 && f.substr(f.size() - 4) == ".r32") {
+  if (endsWith(f, ".r32")) {
     g = readRaw(t);
+  } else if (endsWith(f, ".exr")) {
+    g = readExr(f);
   } else if (f.rfind("builtin:", 0) == 0) {
     const Asset* a = findAsset(f);
     if (!a) {
@@ -137,6 +202,12 @@ void fillFromHeightmap(const TerrainSpec& t, Heightfield& hf) {
       auto at = [&](int a, int b) { return g.v[size_t(t.crop_z + k0 + b) * g.w + t.crop_x + i0 + a]; };
       hf.at(i, k) = (1 - fw) * ((1 - fu) * at(0, 0) + fu * at(1, 0)) + fw * ((1 - fu) * at(0, 1) + fu * at(1, 1));
     }
+  if (t.heights == "metres") {
+    if (!endsWith(t.file, ".r32") && !endsWith(t.file, ".exr"))
+      throw TerrainError(t.file + ": terrain.heights \"metres\" needs a float heightmap (.r32 or .exr); "
+                         "an image's levels are not metres (use height_min and height_max)");
+    return;  // the file's values, as they are
+  }
   // Scale to the range the scene asks for.
   const double lo = hf.minHeight(), hi = hf.maxHeight(), span = hi > lo ? hi - lo : 1.0;
   for (double& h : hf.heights()) h = t.height_min + (h - lo) / span * (t.height_max - t.height_min);

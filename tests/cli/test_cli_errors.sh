@@ -35,7 +35,7 @@ expect "--maps: no map called 'wera' (there is wear, deposition, sediment, or al
 inputs=$(mktemp -d)
 printf 'not a checkpoint' > "$inputs/bad.ckpt"
 expect "$inputs/bad.ckpt: not a Scour checkpoint (no SCOURCKP header)" export "$inputs/bad.ckpt" --out "$tmp/g"
-expect "--format: expected png16 or r16, found 'exr'" export "$inputs/bad.ckpt" --format exr --out "$tmp/g"
+expect "--format: expected png16, r16 or exr, found 'tiff'" export "$inputs/bad.ckpt" --format tiff --out "$tmp/g"
 expect "--maps: no map called 'flow'" export "$inputs/bad.ckpt" --maps flow --out "$tmp/g"
 expect "--out" run dambreak --headless --steps 5
 expect "did you mean 'fluid.viscosity'" run dambreak --headless --steps 5 --set fluid.viscosty=1 --out "$tmp/h"

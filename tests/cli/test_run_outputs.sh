@@ -97,6 +97,31 @@ assert abs(h["unreal_scale_cm"][2] - (hi - lo) * 100 / 512) < 1e-12
 assert not os.path.exists(os.path.join(d, "exp16", "maps", "deposition.png"))
 print("maps and export ok: deepest cut %.3g mm" % (1000 * s["terrain_change"]["max_erosion_m"]))
 PY
+# EXR (issue 17): the heights and maps as float32 OpenEXR; a scene whose terrain is that file,
+# its heights kept as metres, has the same heights to the bit (no water: nothing moves them).
+"$scour" export "$tmp/maps/checkpoint_000200.ckpt" --out "$tmp/exr" --format exr >/dev/null
+for f in height.exr maps/wear.exr maps/deposition.exr maps/sediment.exr; do
+  [ "$(head -c 4 "$tmp/exr/$f" | od -An -tx1 | tr -d ' ')" = "762f3101" ] || { echo "FAIL: $f is not an EXR"; exit 1; }
+done
+python3 - "$tmp" <<'PY'
+import json, os, sys
+d = sys.argv[1]
+h = json.load(open(os.path.join(d, "exr", "export.json")))["heights"]
+scene = {"version": 1, "name": "exr-terrain", "description": "the exported heights, read back",
+         "terrain": {"kind": "heightmap", "file": os.path.join(d, "exr", "height.exr"), "heights": "metres",
+                     "length_x": h["dx_m"] * (h["nx"] - 1), "length_z": h["dz_m"] * (h["nz"] - 1), "cell": h["dx_m"]},
+         "effects": ["fluid_motion"], "water": {"blocks": []}}
+json.dump(scene, open(os.path.join(d, "exr_scene.json"), "w"))
+PY
+"$scour" run "$tmp/exr_scene.json" --steps 1 --out "$tmp/exr_run" >/dev/null
+cmp "$tmp/exr_run/height.r32" "$tmp/exr/height.r32" || { echo "FAIL: the EXR heights did not come back to the bit"; exit 1; }
+# A damaged EXR: exit 2 with OpenEXR's reason, nothing written.
+head -c 300 "$tmp/exr/height.exr" > "$tmp/cut.exr"
+sed "s|$tmp/exr/height.exr|$tmp/cut.exr|" "$tmp/exr_scene.json" > "$tmp/cut_scene.json"
+set +e; out=$("$scour" run "$tmp/cut_scene.json" --steps 1 --out "$tmp/cut_run" 2>&1); rc=$?; set -e
+[ $rc -eq 2 ] && grep -qF "$tmp/cut.exr: not a readable OpenEXR image (" <<<"$out" && [ ! -e "$tmp/cut_run" ] \
+  || { echo "FAIL: a damaged EXR: $rc: $out"; exit 1; }
+echo "EXR export and import: ok"
 # The geologic clock and the wall-time budget: a run that ends on --wall-time writes every output
 # and says why it stopped; the bed's clock is N times the water's after the spin-up, and the
 # ledger (with what the speed-up added) closes.
