@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cli/commands.h"
+#include "engine/maps.h"
 #include "scene/checkpoint.h"
 #include "scene/output.h"
 #include "scene/run_outputs.h"
@@ -18,12 +19,28 @@ using nlohmann::json;
 namespace {
 
 struct ExportOptions {
-  std::string checkpoint, out, maps = "all", format = "png16";
+  std::string checkpoint, out, maps = "all", format = "png16", resample;
 };
+
+// "WxH" vertices, each side 2 to 16,385; InputError naming --resample otherwise.
+std::pair<int, int> parseGridSize(const std::string& text) {
+  const size_t x = text.find('x');
+  auto side = [&](const std::string& part) {
+    char* end = nullptr;
+    const long v = std::strtol(part.c_str(), &end, 10);
+    if (part.empty() || end != part.c_str() + part.size() || v < 2 || v > 16385)
+      throw InputError("--resample: expected WxH vertices, each 2 to 16385 (Unreal: 1009x1009, "
+                       "2017x2017; Unity: 1025x1025), found '" + text + "'");
+    return int(v);
+  };
+  if (x == std::string::npos) side("");
+  return {side(text.substr(0, x)), side(text.substr(x + 1))};
+}
 
 int exportCheckpoint(const ExportOptions& o) {
   if (o.format != "png16" && o.format != "r16" && o.format != "exr")
     throw InputError("--format: expected png16, r16 or exr, found '" + o.format + "'");
+  const std::pair<int, int> size = o.resample.empty() ? std::pair<int, int>{0, 0} : parseGridSize(o.resample);
   std::vector<std::string> maps;
   try {
     maps = parseMapNames("--maps", o.maps);
@@ -48,7 +65,17 @@ int exportCheckpoint(const ExportOptions& o) {
   if (ec || !fs::is_directory(o.out))
     throw InputError("--out: cannot create directory '" + o.out + "'" + (ec ? ": " + ec.message() : ""));
   const fs::path dir(o.out);
-  const Heightfield hf = world->settledTerrain();
+  const Heightfield settled = world->settledTerrain();
+  std::vector<TerrainMap> mapValues = maps.empty() ? std::vector<TerrainMap>{} : erosionMaps(*world);
+  // --resample: the same rectangle on the engine's grid, heights and maps alike.
+  Heightfield hf = settled;
+  if (size.first > 0) {
+    const int nx = settled.nx(), nz = settled.nz();
+    hf = Heightfield(size.first, size.second, settled.dx() * (nx - 1) / (size.first - 1),
+                     settled.dz() * (nz - 1) / (size.second - 1), settled.x0(), settled.z0());
+    hf.heights() = resampleGrid(settled.heights(), nx, nz, size.first, size.second);
+    for (TerrainMap& m : mapValues) m.values = resampleGrid(m.values, nx, nz, size.first, size.second);
+  }
   json heights = {{"nx", hf.nx()}, {"nz", hf.nz()}, {"dx_m", hf.dx()}, {"dz_m", hf.dz()},
                   {"x0_m", hf.x0()}, {"z0_m", hf.z0()}};
   if (o.format == "png16") {
@@ -68,13 +95,14 @@ int exportCheckpoint(const ExportOptions& o) {
     heights["unreal_scale_cm"] = {hf.dx() * 100, hf.dz() * 100, (hi - lo) * 100 / 512};
   }
   writeHeightRaw(dir / "height.r32", hf);
+  if (size.first > 0) heights["resampled_from"] = {settled.nx(), settled.nz()};
   json summary = {{"checkpoint", o.checkpoint},
                   {"step", world->steps()},
                   {"hydraulic_s", world->time()},
                   {"morphological_s", world->morphologicalTime()},
                   {"heights", heights},
                   {"height_r32", "float32 little-endian, nz rows of nx heights [m]"},
-                  {"maps", maps.empty() ? json(nullptr) : writeErosionMaps(dir / "maps", *world, maps, o.format == "exr")}};
+                  {"maps", maps.empty() ? json(nullptr) : writeErosionMaps(dir / "maps", mapValues, hf.nx(), hf.nz(), maps, o.format == "exr")}};
   writeAtomically(dir / "export.json", [&](std::ostream& out) { out << summary.dump(2) << "\n"; });
   std::cout << "exported step " << world->steps() << " of " << o.checkpoint << " (" << hf.nx() << " x "
             << hf.nz() << " heights, " << maps.size() << " maps) to " << dir.string() << "\n";
@@ -89,6 +117,8 @@ Command addExportCommand(CLI::App& app) {
   c->add_option("checkpoint", o->checkpoint, "A checkpoint (.ckpt) of scour run")->required();
   c->add_option("--out", o->out, "Output directory")->required();
   c->add_option("--maps", o->maps, "Erosion maps: all (default), none, or a list: wear,deposition,sediment");
+  c->add_option("--resample", o->resample,
+                "Resample heights and maps to WxH vertices over the same rectangle (Unreal: 1009x1009, 2017x2017, 4033x4033; Unity: 513x513, 1025x1025, 2049x2049)");
   c->add_option("--format", o->format, "Heights (and maps) as png16 (16-bit PNG; default), r16 (Unreal's 16-bit raw heights, PNG maps) or exr (float32 OpenEXR)");
   return [o] { return exportCheckpoint(*o); };
 }

@@ -54,4 +54,19 @@ std::vector<TerrainMap> erosionMaps(const World& w) {
   return {std::move(wear), std::move(deposition), std::move(sediment)};
 }
 
+std::vector<double> resampleGrid(const std::vector<double>& v, int nx, int nz, int nx2, int nz2) {
+  std::vector<double> out(size_t(nx2) * nz2);
+  for (int k = 0; k < nz2; ++k)
+    for (int i = 0; i < nx2; ++i) {
+      const double u = nx2 > 1 ? double(i) * (nx - 1) / (nx2 - 1) : 0.0;
+      const double q = nz2 > 1 ? double(k) * (nz - 1) / (nz2 - 1) : 0.0;
+      const int i0 = std::min(int(u), nx - 2), k0 = std::min(int(q), nz - 2);
+      const double fu = u - i0, fq = q - k0;
+      auto at = [&](int a, int b) { return v[size_t(k0 + b) * nx + i0 + a]; };
+      out[size_t(k) * nx2 + i] =
+          (1 - fq) * ((1 - fu) * at(0, 0) + fu * at(1, 0)) + fq * ((1 - fu) * at(0, 1) + fu * at(1, 1));
+    }
+  return out;
+}
+
 }  // namespace scour

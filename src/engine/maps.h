@@ -30,4 +30,10 @@ const std::vector<std::string>& erosionMapNames();
 /// nearest point of it), so Σ sediment·A_v is the suspended volume.
 std::vector<TerrainMap> erosionMaps(const World& w);
 
+/// Values on an nx × nz grid resampled bilinearly onto nx2 × nz2 points spanning the same
+/// rectangle (the corners kept exactly): for an engine's preferred sizes (Unreal's 1009, 2017,
+/// 4033 vertices, Unity's 513, 1025, 2049). Sums over the grid do not survive resampling: the
+/// ledger's identities hold on the terrain's own grid.
+std::vector<double> resampleGrid(const std::vector<double>& v, int nx, int nz, int nx2, int nz2);
+
 }  // namespace scour

@@ -76,23 +76,23 @@ void RunOutputs::afterStep(const World& w, const StepRecord& r) {
 }
 
 // Heights now and their change since the start, with how to read them back.
-json writeErosionMaps(const fs::path& dir, const World& w, const std::vector<std::string>& names, bool exr) {
+json writeErosionMaps(const fs::path& dir, const std::vector<TerrainMap>& maps, int nx, int nz,
+                      const std::vector<std::string>& names, bool exr) {
   std::error_code ec;
   fs::create_directories(dir, ec);
   if (ec) throw std::runtime_error("cannot create directory '" + dir.string() + "': " + ec.message());
-  const Heightfield& hf = w.terrain();
   json out = json::object();
-  for (const TerrainMap& m : erosionMaps(w)) {
+  for (const TerrainMap& m : maps) {
     if (std::find(names.begin(), names.end(), m.name) == names.end()) continue;
     if (exr) {
-      writeGridExr(dir / (m.name + ".exr"), hf.nx(), hf.nz(), m.values);
+      writeGridExr(dir / (m.name + ".exr"), nx, nz, m.values);
       out[m.name] = {{"file", m.name + ".exr"},
                      {"unit", m.unit},
                      {"meaning", m.meaning},
                      {"mapping", "float32 channel Y, the value in its unit; row k is z = z0 + k dz, column i is x = x0 + i dx"}};
       continue;
     }
-    const double top = writeMapPng16(dir / (m.name + ".png"), hf.nx(), hf.nz(), m.values);
+    const double top = writeMapPng16(dir / (m.name + ".png"), nx, nz, m.values);
     out[m.name] = {{"file", m.name + ".png"},
                    {"unit", m.unit},
                    {"meaning", m.meaning},
@@ -132,7 +132,8 @@ json RunOutputs::exports(const World& w) {
   writeHeightRaw(dir_ / "height.r32", hf);
   const double changeScale = writeErosionPng(dir_ / "erosion.png", hf, w.heightChange());
   if (options_.mesh) writeTerrainObj(dir_ / "mesh.obj", hf);
-  json maps = options_.maps.empty() ? json(nullptr) : writeErosionMaps(dir_ / "maps", w, options_.maps);
+  json maps = options_.maps.empty() ? json(nullptr)
+                                    : writeErosionMaps(dir_ / "maps", erosionMaps(w), hf.nx(), hf.nz(), options_.maps);
   return {{"maps", maps},
           {"height_png",
            {{"file", "height.png"},

@@ -9,17 +9,18 @@
 #include <sstream>
 #include <string>
 
+#include "engine/maps.h"
 #include "engine/step_driver.h"
 #include "scene/presets.h"
 
 namespace scour {
 
-/// The erosion maps named (engine/maps.h) as DIR/<name>.png (writeMapPng16; `exr`: DIR/<name>.exr,
-/// float32, the values in their unit), and DIR/maps.json saying for each its file, unit, meaning
-/// and (PNG) the value white stands for; DIR is made. Returns maps.json's object.
-/// std::runtime_error for an unknown name.
-nlohmann::json writeErosionMaps(const std::filesystem::path& dir, const World& w,
-                                const std::vector<std::string>& names, bool exr = false);
+/// The maps named (of `maps`, on an nx × nz grid) as DIR/<name>.png (writeMapPng16; `exr`:
+/// DIR/<name>.exr, float32, the values in their unit), and DIR/maps.json saying for each its
+/// file, unit, meaning and (PNG) the value white stands for; DIR is made. Returns maps.json's
+/// object. std::runtime_error for a name not among the maps.
+nlohmann::json writeErosionMaps(const std::filesystem::path& dir, const std::vector<TerrainMap>& maps, int nx,
+                                int nz, const std::vector<std::string>& names, bool exr = false);
 /// "all", "none" or a comma-separated list of erosionMapNames(); std::invalid_argument naming
 /// `flag` otherwise.
 std::vector<std::string> parseMapNames(const std::string& flag, const std::string& text);

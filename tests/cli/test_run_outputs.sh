@@ -97,6 +97,28 @@ assert abs(h["unreal_scale_cm"][2] - (hi - lo) * 100 / 512) < 1e-12
 assert not os.path.exists(os.path.join(d, "exp16", "maps", "deposition.png"))
 print("maps and export ok: deepest cut %.3g mm" % (1000 * s["terrain_change"]["max_erosion_m"]))
 PY
+# Resampled to an engine's grid: the same rectangle, the corners kept exactly.
+"$scour" export "$tmp/maps/checkpoint_000200.ckpt" --out "$tmp/res" --resample 101x33 --format r16 >/dev/null
+python3 - "$tmp" <<'PY'
+import json, os, struct, sys
+d = sys.argv[1]
+a = json.load(open(os.path.join(d, "exp16", "export.json")))["heights"]
+b = json.load(open(os.path.join(d, "res", "export.json")))["heights"]
+assert (b["nx"], b["nz"]) == (101, 33) and b["resampled_from"] == [a["nx"], a["nz"]], b
+assert abs(b["dx_m"] * 100 - a["dx_m"] * (a["nx"] - 1)) < 1e-12 and abs(b["dz_m"] * 32 - a["dz_m"] * (a["nz"] - 1)) < 1e-12
+def grid(p, nx, nz): return struct.unpack("<%df" % (nx * nz), open(p, "rb").read())
+g = grid(os.path.join(d, "exp16", "height.r32"), a["nx"], a["nz"])
+r = grid(os.path.join(d, "res", "height.r32"), 101, 33)
+nx = a["nx"]
+for (i, k), (i2, k2) in [((0, 0), (0, 0)), ((nx - 1, 0), (100, 0)), ((0, a["nz"] - 1), (0, 32)), ((nx - 1, a["nz"] - 1), (100, 32))]:
+    assert g[k * nx + i] == r[k2 * 101 + i2], (i, k)
+assert os.path.getsize(os.path.join(d, "res", "height.r16")) == 2 * 101 * 33
+assert os.path.exists(os.path.join(d, "res", "maps", "wear.png"))
+PY
+set +e; out=$("$scour" export "$tmp/maps/checkpoint_000200.ckpt" --out "$tmp/never" --resample 1009 2>&1); rc=$?; set -e
+[ $rc -eq 2 ] && grep -qF -- "--resample: expected WxH vertices, each 2 to 16385" <<<"$out" && [ ! -e "$tmp/never" ] \
+  || { echo "FAIL: bad --resample: $rc: $out"; exit 1; }
+echo "export --resample: ok"
 # EXR (issue 17): the heights and maps as float32 OpenEXR; a scene whose terrain is that file,
 # its heights kept as metres, has the same heights to the bit (no water: nothing moves them).
 "$scour" export "$tmp/maps/checkpoint_000200.ckpt" --out "$tmp/exr" --format exr >/dev/null
