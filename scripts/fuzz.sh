@@ -44,6 +44,9 @@ if [ -x build/scour ]; then  # real scenes and checkpoints from the main build, 
       "$tmp/$p/summary.json" "$seeds/scene_json/$p.json"
     cp "$tmp/$p/checkpoint_000002.ckpt" "$seeds/checkpoint/$p.ckpt"
   done
+  # A float EXR heightmap, as scour export writes it.
+  build/scour export "$tmp/lake/checkpoint_000002.ckpt" --out "$tmp/exr" --format exr --maps none >/dev/null
+  { printf '\002\001\000'; cat "$tmp/exr/height.exr"; } > "$seeds/heightmap/height.exr"
   rm -rf "$tmp"
 fi
 fail=0

@@ -1,5 +1,6 @@
 // Terrains: the procedural generators and heightmap images (files or built into the binary).
 #include <ImfChannelList.h>
+#include <ImfCheckFile.h>
 #include <ImfFrameBuffer.h>
 #include <ImfHeader.h>
 #include <ImfIO.h>
@@ -114,6 +115,11 @@ Gray readExr(const std::string& f) {
   } catch (const InputFileError& e) {
     throw TerrainError(e.what());
   }
+  // OpenEXR's own check for untrusted files first (bounded memory and time; what oss-fuzz runs):
+  // a header may claim a size whose tables alone would not fit in memory.
+  if (Imf::checkOpenEXRFile(bytes.data(), bytes.size(), true, true, true))
+    throw TerrainError(f + ": not a readable OpenEXR image (OpenEXR's check of the file failed: damaged, "
+                       "truncated or too large)");
   try {
     Imf::StdISStream stream;
     stream.str(bytes);

@@ -47,7 +47,7 @@ PY
 # Spaced in bed time: with the bed at 20 times the water's clock, a picture every 0.02 s of bed
 # time; a GIF.
 "$scour" run lake --scale 0.05 --steps 12 --timelapse 0.02s --timelapse-video gif --size 64x48 \
-  --set erosion.morphological_factor=20 --out "$tmp/lapse_bed" >/dev/null
+  --set erosion.morphological_factor=20 --set erosion.morphological_spinup=0 --out "$tmp/lapse_bed" >/dev/null
 python3 - "$tmp/lapse_bed" <<'PY'
 import csv, os, sys
 d = sys.argv[1]

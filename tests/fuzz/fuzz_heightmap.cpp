@@ -1,5 +1,6 @@
-// Heightmap files on any bytes: the first byte chooses a PNG (decoded from the header on) or a
-// raw float32 .r32 of a size from the next two bytes. Refused (TerrainError) or built, nothing else.
+// Heightmap files on any bytes: the first byte chooses a PNG (decoded from the header on), a raw
+// float32 .r32 of a size from the next two bytes, or a float OpenEXR image. Refused
+// (TerrainError) or built, nothing else.
 #include <unistd.h>
 
 #include <cstdint>
@@ -16,8 +17,9 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     char tmpl[] = "/tmp/scour_fuzz_hm_XXXXXX";
     return std::string(mkdtemp(tmpl));
   }();
-  const bool raw = data[0] & 1;
-  const std::string path = dir + (raw ? "/h.r32" : "/h.png");
+  const int kind = data[0] % 3;  // 0 PNG, 1 raw, 2 EXR
+  const bool raw = kind == 1;
+  const std::string path = dir + (kind == 0 ? "/h.png" : raw ? "/h.r32" : "/h.exr");
   {
     std::ofstream out(path, std::ios::binary | std::ios::trunc);
     out.write(reinterpret_cast<const char*>(data + 3), std::streamsize(size - 3));
@@ -27,6 +29,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   t.file = path;
   t.length_x = t.length_z = 1.0;
   t.cell = 0.1;
+  if (kind == 2 && (data[1] & 1)) t.heights = "metres";
   if (raw) t.raw_width = 1 + data[1] % 64, t.raw_height = 1 + data[2] % 64;
   try {
     buildTerrain(t);
