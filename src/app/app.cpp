@@ -343,14 +343,6 @@ int runApp(const SceneSpec& spec, const AppOptions& o) {
     drawn.same_frame = !fresh && frames > 0;
     drawn.keep_surface = !rebuild;
     renderer.render(snap.frame, orbit->camera(), drawn);
-    // The time-lapse's picture, when one is due: at the size the recording started with.
-    state.timelapse.frame(snap, [&](const std::string& path) {
-      if (state.timelapse.pictures() == 0) lapseSize = {size.fbw, size.fbh};
-      renderer.resize(lapseSize.first, lapseSize.second);
-      renderer.render(snap.frame, orbit->camera(), state.budget.apply(state.settings));
-      renderer.writePng(path);
-    });
-    if (auto done = state.timelapse.finished()) actions.log().push_back(*done);
     glFinish();
     plots.addRender(glfwGetTime() - t0);
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
@@ -362,6 +354,15 @@ int runApp(const SceneSpec& spec, const AppOptions& o) {
     context->swapBuffers();
     // The budget is for the whole frame the user waits for: the 3D view, the panels, the swap.
     state.budget.measured(glfwGetTime() - t0);
+    // The time-lapse's picture, when one is due: at the size the recording started with, after
+    // the frame's time is measured (a picture must not lower the water's quality).
+    state.timelapse.frame(snap, [&](const std::string& path) {
+      if (state.timelapse.pictures() == 0) lapseSize = {size.fbw, size.fbh};
+      renderer.resize(lapseSize.first, lapseSize.second);
+      renderer.render(snap.frame, orbit->camera(), state.budget.apply(state.settings));
+      renderer.writePng(path);
+    });
+    if (auto done = state.timelapse.finished()) actions.log().push_back(*done);
     if (o.stats) {
       const double now = glfwGetTime();
       o.stats->frameSeconds.push_back(now - frameStart);

@@ -11,7 +11,12 @@ namespace {
 
 // What the finished video says to the user.
 std::string videoMessage(Timelapse& lapse) {
-  const std::string problem = lapse.finish();
+  std::string problem;
+  try {
+    problem = lapse.finish();
+  } catch (const std::exception& e) {  // timelapse.csv could not be written: say so, keep the window
+    problem = e.what();
+  }
   const std::string pictures = std::to_string(lapse.pictures()) + " pictures in " + lapse.folder().string();
   if (lapse.videoPath().empty()) return "time-lapse: " + pictures;
   if (!problem.empty()) return "time-lapse: " + pictures + "; no video: " + problem;
@@ -28,17 +33,24 @@ std::string TimelapseRecorder::start(const std::string& folder, const TimelapseO
   if (lapse_) return "time-lapse: already recording into " + lapse_->folder().string();
   if (video_.valid()) return "time-lapse: the last one's video is still being made";
   fs::path where = folder;
-  for (int n = 2; fs::exists(where / "frame_000000.png") && n < 10000; ++n) where = folder + "_" + std::to_string(n);
+  std::error_code ec;
+  for (int n = 2; fs::exists(where / "frame_000000.png", ec) && n < 10000; ++n) where = folder + "_" + std::to_string(n);
   try {
     lapse_.emplace(where, o);
-  } catch (const TimelapseError& e) {
+  } catch (const std::exception& e) {
     return e.what();
   }
-  return "time-lapse: recording into " + where.string();
+  generation_ = -1;
+  return "time-lapse: recording into " + lapse_->folder().string();
 }
 
 void TimelapseRecorder::frame(const Snapshot& snap, const std::function<void(const std::string&)>& shot) {
-  if (!lapse_ || !lapse_->due(snap.frame.step, snap.morphTime)) return;
+  if (!lapse_) return;
+  if (snap.generation != generation_ && generation_ >= 0) lapse_->restart();
+  generation_ = snap.generation;
+  // A snapshot restored: the clocks went back within a generation.
+  if (lapse_->pictures() > 0 && snap.frame.step < lapse_->lastStep()) lapse_->restart();
+  if (!lapse_->due(snap.frame.step, snap.morphTime)) return;
   shot(lapse_->nextPicture().string());
   lapse_->added(snap.frame.step, snap.frame.time, snap.morphTime, snap.factorNow);
 }

@@ -38,6 +38,7 @@ class TimelapseRecorder {
 
  private:
   std::optional<Timelapse> lapse_;
+  long generation_ = -1;  ///< the snapshots' generation of the last picture (resets, loads)
   std::future<std::string> video_;
 };
 

@@ -34,7 +34,12 @@ std::pair<int, int> parseGridSize(const std::string& text) {
     return int(v);
   };
   if (x == std::string::npos) side("");
-  return {side(text.substr(0, x)), side(text.substr(x + 1))};
+  const int w = side(text.substr(0, x)), h = side(text.substr(x + 1));
+  // Heights, their copy and the maps as doubles: 2²⁷ vertices is about 5 GB already.
+  if (1LL * w * h > (1LL << 27))
+    throw InputError("--resample: " + text + " is " + std::to_string(1LL * w * h) +
+                     " vertices, more than this build writes (134,217,728)");
+  return {w, h};
 }
 
 int exportCheckpoint(const ExportOptions& o) {
@@ -61,6 +66,9 @@ int exportCheckpoint(const ExportOptions& o) {
     throw InputError(o.checkpoint + ": " + e.what());
   }
   std::error_code ec;
+  // A run's own folder keeps its run's heights: an export goes elsewhere.
+  if (fs::exists(fs::path(o.out) / "summary.json", ec))
+    throw InputError("--out: '" + o.out + "' holds a run's outputs (summary.json); export into another folder");
   fs::create_directories(o.out, ec);
   if (ec || !fs::is_directory(o.out))
     throw InputError("--out: cannot create directory '" + o.out + "'" + (ec ? ": " + ec.message() : ""));

@@ -36,8 +36,8 @@ int main(int argc, char** argv) {
   app.add_option("--terrain", windowTerrain, "Terrain colours at the start: erosion (default), shaded, sediment");
   std::string windowLapse, windowLapseVideo = "mp4";
   app.add_option("--timelapse", windowLapse, "Record a time-lapse from the start: a picture every K steps (250) or S seconds of bed time (0.5s); its video when the window closes");
-  app.add_option("--timelapse-video", windowLapseVideo, "The time-lapse's video: mp4 (default), gif or none");
-  app.add_option("--timelapse-out", window.timelapseFolder, "The time-lapse's folder (default scour_out_timelapse; the video beside it)");
+  auto* lapseVideoOpt = app.add_option("--timelapse-video", windowLapseVideo, "The time-lapse's video: mp4 (default), gif or none");
+  auto* lapseOutOpt = app.add_option("--timelapse-out", window.timelapseFolder, "The time-lapse's folder (default scour_out_timelapse; the video beside it)");
   Command run = addRunCommand(app);
   Command bench = addBenchCommand(app);
   Command render = addRenderCommand(app);
@@ -89,6 +89,15 @@ int main(int argc, char** argv) {
       if (window.timelapse.video != "none" && findFfmpeg().empty())
         throw InputError("--timelapse: the ffmpeg program, which makes the video, is not installed "
                          "(scripts/setup.sh installs it); --timelapse-video none keeps the pictures alone");
+      // The folder is made before the window opens, so a bad one is refused here.
+      std::error_code ec;
+      std::filesystem::create_directories(window.timelapseFolder, ec);
+      if (ec || !std::filesystem::is_directory(window.timelapseFolder, ec))
+        throw InputError("--timelapse-out: cannot create directory '" + window.timelapseFolder + "'" +
+                         (ec ? ": " + ec.message() : ""));
+    } else if (lapseVideoOpt->count() > 0 || lapseOutOpt->count() > 0) {
+      throw InputError(std::string(lapseVideoOpt->count() > 0 ? "--timelapse-video" : "--timelapse-out") +
+                       ": needs --timelapse (the spacing of the pictures)");
     }
     window.terrain = int(parseTerrain(windowTerrain));
     try {

@@ -257,7 +257,11 @@ int runScene(const RunOptions& o) {
   std::string videoProblem;
   if (timelapse) {
     if (end.ok()) lapsePicture(true);  // the time-lapse ends on the state the run ends on
-    videoProblem = timelapse->finish();
+    try {
+      videoProblem = timelapse->finish();
+    } catch (const std::exception& e) {  // the run's own outputs and summary still come
+      videoProblem = e.what();
+    }
     json entry = {{"pictures", timelapse->pictures()},
                   {"folder", fs::relative(timelapse->folder(), dir).string()},
                   {"every_steps", lapse.everySteps},

@@ -50,6 +50,13 @@ int runProgram(const std::vector<std::string>& args, const fs::path& log) {
   return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + (WIFSIGNALED(status) ? WTERMSIG(status) : 0);
 }
 
+// ffmpeg reads '%' in an image sequence's name as a pattern: the folder's own are doubled.
+std::string escapePercent(const std::string& s) {
+  std::string out;
+  for (char c : s) out += c == '%' ? std::string("%%") : std::string(1, c);
+  return out;
+}
+
 }  // namespace
 
 void parseTimelapseSpacing(const std::string& flag, const std::string& text, TimelapseOptions& o) {
@@ -85,7 +92,13 @@ std::string findFfmpeg() {
   return "";
 }
 
-Timelapse::Timelapse(fs::path folder, TimelapseOptions o) : folder_(std::move(folder)), options_(std::move(o)) {
+Timelapse::Timelapse(fs::path folder, TimelapseOptions o) : options_(std::move(o)) {
+  // Absolute (ffmpeg never reads a path as an option) and without a trailing separator (the
+  // video goes beside the folder, not into it as ".mp4").
+  std::error_code ec;
+  folder_ = fs::absolute(folder, ec).lexically_normal();
+  if (ec) folder_ = folder.lexically_normal();
+  if (!folder_.has_filename() && folder_.has_parent_path()) folder_ = folder_.parent_path();
   if (options_.everySteps <= 0 && options_.everyBedSeconds <= 0)
     throw TimelapseError("time-lapse: a spacing in steps or in seconds of bed time is needed");
   if (options_.fps < 1 || options_.fps > 240)
@@ -99,19 +112,18 @@ Timelapse::Timelapse(fs::path folder, TimelapseOptions o) : folder_(std::move(fo
                                                         : "on the PATH") +
                            " (scripts/setup.sh installs it); --timelapse-video none keeps the pictures alone");
   }
-  std::error_code ec;
   fs::create_directories(folder_, ec);
-  if (ec || !fs::is_directory(folder_))
+  if (ec || !fs::is_directory(folder_, ec))
     throw TimelapseError("time-lapse: cannot create the folder '" + folder_.string() + "'" +
                          (ec ? ": " + ec.message() : ""));
-  if (fs::exists(folder_ / "frame_000000.png"))
+  if (fs::exists(folder_ / "frame_000000.png", ec))
     throw TimelapseError("time-lapse: '" + folder_.string() +
                          "' already holds a time-lapse's pictures; choose another output folder");
   csv_ << "frame,step,hydraulic_s,morphological_s,factor\n";
 }
 
 bool Timelapse::due(long step, double bedSeconds) const {
-  if (count_ == 0) return true;
+  if (count_ == 0 || restarted_) return true;
   if (options_.everySteps > 0) return step - lastStep_ >= options_.everySteps;
   // A bed time that is a whole number of spacings (up to rounding) is due.
   return bedSeconds - lastBed_ >= options_.everyBedSeconds * (1 - 1e-9);
@@ -128,6 +140,7 @@ void Timelapse::added(long step, double waterSeconds, double bedSeconds, double 
   std::snprintf(row, sizeof row, "%ld,%ld,%.9g,%.9g,%.9g\n", count_, step, waterSeconds, bedSeconds, factor);
   csv_ << row;
   ++count_;
+  restarted_ = false;
   lastStep_ = step;
   lastBed_ = bedSeconds;
 }
@@ -148,7 +161,7 @@ std::string Timelapse::finish() {
   part += ".tmp-" + std::to_string(::getpid());
   const std::string fps = std::to_string(options_.fps);
   std::vector<std::string> args = {ffmpeg_, "-nostdin", "-hide_banner", "-loglevel", "error", "-y",
-                                   "-framerate", fps, "-i", (folder_ / kPicturePattern).string()};
+                                   "-framerate", fps, "-i", escapePercent(folder_.string()) + "/" + kPicturePattern};
   if (options_.video == "mp4") {
     // H.264 in 4:2:0 plays everywhere; it needs even sides.
     for (const char* a : {"-vf", "pad=ceil(iw/2)*2:ceil(ih/2)*2", "-c:v", "libx264", "-pix_fmt", "yuv420p",

@@ -47,6 +47,9 @@ class Timelapse {
   /// The path of the next picture; `added` records it once the caller has written it.
   std::filesystem::path nextPicture() const;
   void added(long step, double waterSeconds, double bedSeconds, double factor);
+  /// The clocks went back (a reset, a load, a snapshot restored): the next picture is due at once
+  /// and the spacing counts from it.
+  void restart() { restarted_ = true; }
 
   long pictures() const { return count_; }
   /// The step of the last picture (-1 before the first).
@@ -65,6 +68,7 @@ class Timelapse {
   TimelapseOptions options_;
   std::string ffmpeg_;
   long count_ = 0, lastStep_ = 0;
+  bool restarted_ = false;
   double lastBed_ = 0;
   std::ostringstream csv_;
 };

@@ -46,6 +46,16 @@ set -e
 [ $rc -eq 2 ] && grep -qF -- "--timelapse: expected a step count (250) or seconds of bed time (0.5s), each > 0, found '0.5x'" <<<"$msg" \
   || { echo "bad --timelapse: $rc $msg"; exit 1; }
 set +e
+msg=$("$scour" --timelapse-video gif 2>&1); rc=$?
+set -e
+[ $rc -eq 2 ] && grep -qF -- "--timelapse-video: needs --timelapse (the spacing of the pictures)" <<<"$msg" \
+  || { echo "--timelapse-video alone: $rc $msg"; exit 1; }
+set +e
+msg=$("$scour" --timelapse 5 --timelapse-out /proc/nope/lapse 2>&1); rc=$?
+set -e
+[ $rc -eq 2 ] && grep -qF -- "--timelapse-out: cannot create directory '/proc/nope/lapse'" <<<"$msg" \
+  || { echo "bad --timelapse-out: $rc $msg"; exit 1; }
+set +e
 msg=$("$scour" --quit-after-frames 2 --panel-shots /proc/nope/shots 2>&1); rc=$?
 set -e
 [ $rc -eq 2 ] && grep -qF -- "--panel-shots: cannot create directory '/proc/nope/shots'" <<<"$msg" \

@@ -82,7 +82,7 @@ check "--size: expected WxH" run lake --steps 2 --frames 1 --size big --out "$tm
 check "--timelapse: expected a step count (250) or seconds of bed time (0.5s), each > 0, found '1.5'" run lake --steps 2 --timelapse 1.5 --out "$tmp/never"
 check "--timelapse: expected a step count (250) or seconds of bed time (0.5s), each > 0, found '0s'" run lake --steps 2 --timelapse 0s --out "$tmp/never"
 check "--timelapse-video: expected mp4, gif or none, found 'avi'" run lake --steps 2 --timelapse 1 --timelapse-video avi --out "$tmp/never"
-check "--timelapse-fps" run lake --steps 2 --timelapse 1 --timelapse-fps 0 --out "$tmp/never"
+check "--timelapse-fps: Value 0 not in range 1 to 240" run lake --steps 2 --timelapse 1 --timelapse-fps 0 --out "$tmp/never"
 SCOUR_FFMPEG=/nonexistent check "time-lapse: the ffmpeg program, which makes the video, is not at \$SCOUR_FFMPEG ('/nonexistent') (scripts/setup.sh installs it)" run lake --steps 2 --timelapse 1 --out "$tmp/never"
 [ ! -e "$tmp/x.png" ] && [ ! -e "$tmp/x.jpg" ] && [ ! -e "$tmp/never" ] || { echo "FAIL: output left behind"; exit 1; }
 echo "bad picture options refused"

@@ -118,6 +118,13 @@ PY
 set +e; out=$("$scour" export "$tmp/maps/checkpoint_000200.ckpt" --out "$tmp/never" --resample 1009 2>&1); rc=$?; set -e
 [ $rc -eq 2 ] && grep -qF -- "--resample: expected WxH vertices, each 2 to 16385" <<<"$out" && [ ! -e "$tmp/never" ] \
   || { echo "FAIL: bad --resample: $rc: $out"; exit 1; }
+set +e; out=$("$scour" export "$tmp/maps/checkpoint_000200.ckpt" --out "$tmp/never" --resample 16385x16385 2>&1); rc=$?; set -e
+[ $rc -eq 2 ] && grep -qF -- "--resample: 16385x16385 is 268468225 vertices, more than this build writes (134,217,728)" <<<"$out" \
+  && [ ! -e "$tmp/never" ] || { echo "FAIL: a huge --resample: $rc: $out"; exit 1; }
+# A run's own folder keeps its run's heights.
+set +e; out=$("$scour" export "$tmp/maps/checkpoint_000200.ckpt" --out "$tmp/maps" --format exr 2>&1); rc=$?; set -e
+[ $rc -eq 2 ] && grep -qF -- "holds a run's outputs (summary.json); export into another folder" <<<"$out" \
+  && [ ! -e "$tmp/maps/height.exr" ] || { echo "FAIL: export into a run's folder: $rc: $out"; exit 1; }
 echo "export --resample: ok"
 # EXR (issue 17): the heights and maps as float32 OpenEXR; a scene whose terrain is that file,
 # its heights kept as metres, has the same heights to the bit (no water: nothing moves them).

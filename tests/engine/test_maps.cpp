@@ -3,6 +3,9 @@
 // volume, each to 1e-9 relative; every value is ≥ 0, and a vertex is never both worn and built.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
+#include <cmath>
+
 #include "engine/maps.h"
 #include "engine/sediment.h"
 #include "scene/presets.h"
@@ -39,6 +42,23 @@ TEST_CASE("the erosion maps sum to the ledger's volumes", "[maps][budget]") {
   CHECK(std::abs(deposition / change.deposited - 1) < 1e-9);
   CHECK(std::abs(sediment / suspended - 1) < 1e-9);
   CHECK(std::abs(suspended / w.soilBudget().suspended - 1) < 1e-9);
+  // The sediment is where the particles carrying it are: a vertex holds some only when a particle
+  // with sediment stands over one of the cells around it, and the vertex nearest each such
+  // particle holds some (a transposed or shifted map fails this).
+  const Heightfield& hf = w.terrain();
+  const Fluid& f = w.fluid();
+  std::vector<char> near(area.size(), 0);
+  for (size_t i = 0; i < f.size(); ++i) {
+    if (f.sed[i] <= 0) continue;
+    const double u = std::clamp((f.x[i].x() - hf.x0()) / hf.dx(), 0.0, double(hf.nx() - 1));
+    const double q = std::clamp((f.x[i].z() - hf.z0()) / hf.dz(), 0.0, double(hf.nz() - 1));
+    for (int k = int(std::floor(q)); k <= int(std::ceil(q)); ++k)
+      for (int c = int(std::floor(u)); c <= int(std::ceil(u)); ++c) near[size_t(k) * hf.nx() + c] = 1;
+    const size_t nearest = size_t(std::lround(q)) * hf.nx() + size_t(std::lround(u));
+    CHECK(maps[2].values[nearest] > 0);
+  }
+  for (size_t v = 0; v < area.size(); ++v)
+    if (maps[2].values[v] > 0) CHECK(near[v]);
   // The deepest cut is the wear map's peak.
   double peak = 0;
   for (double v : maps[0].values) peak = std::max(peak, v);

@@ -42,6 +42,10 @@ const Golden kGolden[] = {
     {"rain", 0.3, 100, 0x9b5fe3da691a187dULL, 0x1.68b3618499d9fp-1, 0x1.539437908a10ep-24},
 };
 
+// The default scene at its shipped speed-up (the last test case).
+const char* const kSpedUp =
+    "    {\"default-N100\", 0.3, 780, 0x46848301fb7b8213ULL, 0x1.96f59262135c9p-1, 0x1.49af59747842ap-16},";
+
 std::string line(const char* preset, double scale, int steps, uint64_t hash, const SoilBudget& b) {
   std::ostringstream o;
   o << "    {\"" << preset << "\", " << scale << ", " << steps << ", 0x" << std::hex << hash
@@ -79,4 +83,20 @@ TEST_CASE("every preset reaches its recorded state hash and soil budget", "[gold
     INFO("preset without a golden line: " << p.name);
     CHECK(covered.count(p.name) == 1);
   }
+}
+
+TEST_CASE("the geologic speed-up as the scenes ship it reaches its recorded state", "[golden]") {
+  // The default scene at its own N = 100, run past its 0.5 s spin-up: the path the golden lines
+  // above (all at N = 1) do not take. Printed with SCOUR_GOLDEN_PRINT=1 as the lines above.
+  SceneSpec spec = presetSpec("default", 0.3);
+  REQUIRE(spec.params.morphological_factor == 100);
+  World w(buildScene(spec).desc);
+  while (w.time() < 0.6) w.step();
+  const SoilBudget b = w.soilBudget();
+  const std::string now = line("default-N100", 0.3, int(w.steps()), w.stateHash(), b);
+  if (std::getenv("SCOUR_GOLDEN_PRINT")) std::cout << now << "\n";
+  INFO("now:\n" << now);
+  CHECK(w.morphologicalTime() > 10);
+  CHECK(now == kSpedUp);
+  CHECK(b.relativeError() < 1e-12);
 }
