@@ -4,6 +4,7 @@
 
 #include <CLI/CLI.hpp>
 #include <functional>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -35,6 +36,11 @@ Command addExportCommand(CLI::App& app);
 /// Shared by run and bench: builds the scene and applies `--set key=value` overrides.
 Scene loadScene(const std::string& name, double scale, long particles,
                 const std::vector<std::string>& sets);
+/// The world a checkpoint holds (its scene into `scene`); InputError for a file that is not one
+/// or does not fit its scene: prefix + the reader's message, or prefix + path + ": " + the scene's.
+std::unique_ptr<World> resumeFromCheckpoint(const std::string& path, Scene& scene, const std::string& prefix);
+/// Makes the directory `path` (and its parents); InputError naming `flag` when it cannot.
+void createOutputDirectory(const std::string& flag, const std::string& path);
 /// Applies `--set key=value` overrides; throws InputError naming the key for a bad one.
 void applySets(SimParams& params, const std::vector<std::string>& sets);
 /// For a command line CLI11 refused: "unknown option '--particle-every' for 'scour run'; did you

@@ -53,25 +53,12 @@ int exportCheckpoint(const ExportOptions& o) {
     throw InputError(e.what());
   }
   Scene scene;
-  std::unique_ptr<World> world;
-  try {
-    world = std::make_unique<World>(resumeWorld(readCheckpoint(o.checkpoint), scene));
-  } catch (const CheckpointError& e) {
-    throw InputError(e.what());
-  } catch (const SceneError& e) {
-    throw InputError(o.checkpoint + ": " + e.what());
-  } catch (const TerrainError& e) {
-    throw InputError(o.checkpoint + ": terrain: " + e.what());
-  } catch (const std::invalid_argument& e) {
-    throw InputError(o.checkpoint + ": " + e.what());
-  }
+  const std::unique_ptr<World> world = resumeFromCheckpoint(o.checkpoint, scene, "");
   std::error_code ec;
   // A run's own folder keeps its run's heights: an export goes elsewhere.
   if (fs::exists(fs::path(o.out) / "summary.json", ec))
     throw InputError("--out: '" + o.out + "' holds a run's outputs (summary.json); export into another folder");
-  fs::create_directories(o.out, ec);
-  if (ec || !fs::is_directory(o.out))
-    throw InputError("--out: cannot create directory '" + o.out + "'" + (ec ? ": " + ec.message() : ""));
+  createOutputDirectory("--out", o.out);
   const fs::path dir(o.out);
   const Heightfield settled = world->settledTerrain();
   std::vector<TerrainMap> mapValues = maps.empty() ? std::vector<TerrainMap>{} : erosionMaps(*world);

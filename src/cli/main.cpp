@@ -73,11 +73,7 @@ int main(int argc, char** argv) {
     if (!window.panelShots.empty()) {
       if (window.quitAfterFrames <= 0)
         throw InputError("--panel-shots: needs --quit-after-frames (the shots are of the last frame)");
-      std::error_code ec;
-      std::filesystem::create_directories(window.panelShots, ec);
-      if (ec || !std::filesystem::is_directory(window.panelShots))
-        throw InputError("--panel-shots: cannot create directory '" + window.panelShots + "'" +
-                         (ec ? ": " + ec.message() : ""));
+      createOutputDirectory("--panel-shots", window.panelShots);
     }
     if (!windowLapse.empty()) {
       try {
@@ -86,15 +82,11 @@ int main(int argc, char** argv) {
       } catch (const TimelapseError& e) {
         throw InputError(e.what());
       }
-      if (window.timelapse.video != "none" && findFfmpeg().empty())
-        throw InputError("--timelapse: the ffmpeg program, which makes the video, is not installed "
-                         "(scripts/setup.sh installs it); --timelapse-video none keeps the pictures alone");
+      if (const std::string missing = window.timelapse.video != "none" ? ffmpegMissing() : "";
+          !missing.empty())
+        throw InputError("--timelapse: " + missing);
       // The folder is made before the window opens, so a bad one is refused here.
-      std::error_code ec;
-      std::filesystem::create_directories(window.timelapseFolder, ec);
-      if (ec || !std::filesystem::is_directory(window.timelapseFolder, ec))
-        throw InputError("--timelapse-out: cannot create directory '" + window.timelapseFolder + "'" +
-                         (ec ? ": " + ec.message() : ""));
+      createOutputDirectory("--timelapse-out", window.timelapseFolder);
     } else if (lapseVideoOpt->count() > 0 || lapseOutOpt->count() > 0) {
       throw InputError(std::string(lapseVideoOpt->count() > 0 ? "--timelapse-video" : "--timelapse-out") +
                        ": needs --timelapse (the spacing of the pictures)");

@@ -76,6 +76,27 @@ Scene loadScene(const std::string& name, double scale, long particles,
   }
 }
 
+std::unique_ptr<World> resumeFromCheckpoint(const std::string& path, Scene& scene, const std::string& prefix) {
+  try {
+    return std::make_unique<World>(resumeWorld(readCheckpoint(path), scene));
+  } catch (const CheckpointError& e) {
+    throw InputError(prefix + e.what());
+  } catch (const SceneError& e) {
+    throw InputError(prefix + path + ": " + e.what());
+  } catch (const TerrainError& e) {
+    throw InputError(prefix + path + ": terrain: " + e.what());
+  } catch (const std::invalid_argument& e) {
+    throw InputError(prefix + path + ": " + e.what());
+  }
+}
+
+void createOutputDirectory(const std::string& flag, const std::string& path) {
+  std::error_code ec;
+  fs::create_directories(path, ec);
+  if (ec || !fs::is_directory(path, ec))
+    throw InputError(flag + ": cannot create directory '" + path + "'" + (ec ? ": " + ec.message() : ""));
+}
+
 namespace {
 
 struct RunOptions {
@@ -107,18 +128,7 @@ int runScene(const RunOptions& o) {
   std::unique_ptr<World> world;
   if (!o.resume.empty()) {
     // The scene, its overrides and the state all come from the checkpoint.
-    try {
-      const Checkpoint c = readCheckpoint(o.resume);
-      world = std::make_unique<World>(resumeWorld(c, scene));
-    } catch (const CheckpointError& e) {
-      throw InputError(std::string("--resume: ") + e.what());
-    } catch (const SceneError& e) {
-      throw InputError("--resume: " + o.resume + ": " + e.what());
-    } catch (const TerrainError& e) {
-      throw InputError("--resume: " + o.resume + ": terrain: " + e.what());
-    } catch (const std::invalid_argument& e) {
-      throw InputError("--resume: " + o.resume + ": " + e.what());
-    }
+    world = resumeFromCheckpoint(o.resume, scene, "--resume: ");
     if (o.steps > 0 && o.steps <= world->steps())
       throw InputError("--steps: the checkpoint is at step " + std::to_string(world->steps()) +
                        "; --steps is the total to reach, so it must be larger");
@@ -165,11 +175,7 @@ int runScene(const RunOptions& o) {
       throw InputError(e.what());
     }
   }
-  std::error_code ec;
-  fs::create_directories(o.out, ec);
-  if (ec || !fs::is_directory(o.out))
-    throw InputError("--out: cannot create directory '" + o.out + "'" +
-                     (ec ? ": " + ec.message() : ""));
+  createOutputDirectory("--out", o.out);
   const fs::path dir(o.out);
   // A time-lapse picture when one is due, numbered in order; its clocks in timelapse.csv.
   auto lapsePicture = [&](bool last) {

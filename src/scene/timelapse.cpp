@@ -92,6 +92,14 @@ std::string findFfmpeg() {
   return "";
 }
 
+std::string ffmpegMissing() {
+  if (!findFfmpeg().empty()) return "";
+  const char* own = std::getenv("SCOUR_FFMPEG");
+  return std::string("the ffmpeg program, which makes the video, is not ") +
+         (own ? "at $SCOUR_FFMPEG ('" + std::string(own) + "')" : "on the PATH") +
+         " (scripts/setup.sh installs it); --timelapse-video none keeps the pictures alone";
+}
+
 Timelapse::Timelapse(fs::path folder, TimelapseOptions o) : options_(std::move(o)) {
   // Absolute (ffmpeg never reads a path as an option) and without a trailing separator (the
   // video goes beside the folder, not into it as ".mp4").
@@ -106,11 +114,7 @@ Timelapse::Timelapse(fs::path folder, TimelapseOptions o) : options_(std::move(o
                          std::to_string(options_.fps));
   if (options_.video != "none") {
     ffmpeg_ = findFfmpeg();
-    if (ffmpeg_.empty())
-      throw TimelapseError(std::string("time-lapse: the ffmpeg program, which makes the video, is not ") +
-                           (std::getenv("SCOUR_FFMPEG") ? "at $SCOUR_FFMPEG ('" + std::string(std::getenv("SCOUR_FFMPEG")) + "')"
-                                                        : "on the PATH") +
-                           " (scripts/setup.sh installs it); --timelapse-video none keeps the pictures alone");
+    if (ffmpeg_.empty()) throw TimelapseError("time-lapse: " + ffmpegMissing());
   }
   fs::create_directories(folder_, ec);
   if (ec || !fs::is_directory(folder_, ec))

@@ -33,6 +33,9 @@ void parseTimelapseVideo(const std::string& flag, const std::string& text, Timel
 /// The ffmpeg program that makes the video: $SCOUR_FFMPEG when set, else `ffmpeg` on the PATH.
 /// Empty when there is none.
 std::string findFfmpeg();
+/// Why no video can be made ("the ffmpeg program, which makes the video, is not …"), or "" when
+/// findFfmpeg() finds one.
+std::string ffmpegMissing();
 
 class Timelapse {
  public:
