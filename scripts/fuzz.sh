@@ -47,6 +47,10 @@ if [ -x build/scour ]; then  # real scenes and checkpoints from the main build, 
   # A float EXR heightmap, as scour export writes it.
   build/scour export "$tmp/lake/checkpoint_000002.ckpt" --out "$tmp/exr" --format exr --maps none >/dev/null
   { printf '\002\001\000'; cat "$tmp/exr/height.exr"; } > "$seeds/heightmap/height.exr"
+  # A float GeoTIFF as scour export writes it, and an ASCII grid with NoData.
+  build/scour export "$tmp/lake/checkpoint_000002.ckpt" --out "$tmp/tif" --format geotiff --maps none >/dev/null
+  { printf '\003\001\000'; cat "$tmp/tif/height.tif"; } > "$seeds/heightmap/height.tif"
+  { printf '\004\001\000'; printf 'ncols 3\nnrows 3\nxllcorner 0\nyllcorner 0\ncellsize 1\nNODATA_value -9\n1 2 3\n4 -9 6\n7 8 9\n'; } > "$seeds/heightmap/grid.asc"
   rm -rf "$tmp"
 fi
 fail=0

@@ -1,12 +1,18 @@
 // Terrain colour: a height/slope ramp (mode 0), erosion and deposition since the start in false
 // colour (mode 1: red erosion, blue deposition, as the paper's Figs. 1 and 8), or the deposited
-// sediment alone (mode 2). Sun and sky light, and under water the caustics map.
+// sediment alone (mode 2), or an erosion map (mode 3: dark where 0, then blue through green to
+// yellow by √(value / largest); a direction map by hue, east red). Sun and sky light, and under
+// water the caustics map.
 in vec3 worldPos;
 in vec3 worldNormal;
 in vec2 gridCoord;
 
 uniform sampler2D change;      // R32F height change since the start [m]
 uniform int mode;
+uniform sampler2D map;         // R32F an erosion map's value per vertex (mode 3)
+uniform sampler2D map2;        // R32F its second channel (a direction's z)
+uniform float mapScale;        // the map's largest |value|
+uniform bool mapPair;          // a direction (x in map, z in map2)
 uniform float changeScale;     // |Δh| that gets the full colour [m]
 uniform vec2 heightRange;      // lowest, highest terrain height
 uniform vec3 sunDir;           // towards the sun
@@ -36,6 +42,23 @@ void main() {
     base = mix(base, vec3(0.10, 0.25, 0.90), sqrt(d));
   } else if (mode == 2) {
     base = mix(base * 0.6, vec3(0.95, 0.80, 0.35), sqrt(clamp(dh / changeScale, 0.0, 1.0)));
+  } else if (mode == 3) {
+    ivec2 at = ivec2(gridCoord + 0.5);
+    float a = texelFetch(map, at, 0).r, b = texelFetch(map2, at, 0).r;
+    if (mapPair) {
+      if (a != 0.0 || b != 0.0) {
+        float hue = atan(b, a) / 6.2831853 + 0.5;  // the direction's angle, 0 … 1
+        base = clamp(abs(fract(hue + vec3(0.0, 2.0 / 3.0, 1.0 / 3.0)) * 6.0 - 3.0) - 1.0, 0.0, 1.0);
+      } else {
+        base *= 0.45;
+      }
+    } else if (a > 0.0) {
+      float t = sqrt(clamp(a / mapScale, 0.0, 1.0));
+      vec3 lo = vec3(0.15, 0.20, 0.65), mid = vec3(0.10, 0.65, 0.55), hi = vec3(0.98, 0.90, 0.15);
+      base = t < 0.5 ? mix(lo, mid, t * 2.0) : mix(mid, hi, t * 2.0 - 1.0);
+    } else {
+      base *= 0.45;
+    }
   }
   float sun = max(dot(n, sunDir), 0.0);
   if (caustics) {

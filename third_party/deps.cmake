@@ -7,6 +7,8 @@ find_package(CLI11 2.1 REQUIRED)
 find_package(PNG REQUIRED)
 # Float EXR heightmaps and maps (Debian libopenexr-dev).
 find_package(OpenEXR 3.1 REQUIRED CONFIG)
+# Elevation data (GeoTIFF, SRTM .hgt, ASCII grid) in and GeoTIFF out (Debian libgdal-dev).
+find_package(GDAL 3.6 REQUIRED CONFIG)
 # nanoflann (libnanoflann-dev, header-only): the kd-tree neighbor search, engine.neighbor_search.
 find_package(nanoflann 1.4 REQUIRED)
 

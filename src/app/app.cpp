@@ -232,6 +232,9 @@ void drawPanels(const Snapshot& snap, const SceneSpec& scene, Actions& actions, 
   parametersPanel(snap, actions, state);
   filePanel(actions, state);
   displayPanel(state);
+  // The frames carry the erosion map the display shows (making one costs a pass over the grid).
+  const std::string map = state.settings.terrain == RenderSettings::Terrain::kMap ? state.settings.map : "";
+  if (map != state.shownMap) actions.command(cmd::ShowMap{map}), state.shownMap = map;
   waterPanel(snap, scene, actions, state);
   statsPanel(snap, plots, state);
   logPanel(actions.log(), state);

@@ -9,6 +9,7 @@
 #include <initializer_list>
 #include <vector>
 
+#include "engine/maps.h"
 #include "scene/scene_json.h"
 
 namespace scour {
@@ -398,7 +399,17 @@ void displayPanel(PanelState& state) {
   if (!panel) return;
   RenderSettings& settings = state.settings;
   settings.terrain =
-      RenderSettings::Terrain(radioRow(int(settings.terrain), {"shaded", "erosion", "sediment"}));
+      RenderSettings::Terrain(radioRow(int(settings.terrain), {"shaded", "erosion", "sediment", "map"}));
+  if (settings.terrain == RenderSettings::Terrain::kMap) {
+    // The erosion maps (engine/maps.h): what the run did, and what the water did over it.
+    if (ImGui::BeginCombo("erosion map", settings.map.c_str())) {
+      for (const std::string& m : erosionMapNames())
+        if (ImGui::Selectable(m.c_str(), m == settings.map)) settings.map = m;
+      ImGui::EndCombo();
+    }
+    if (ImGui::IsItemHovered())
+      ImGui::SetTooltip("dark: none; blue to yellow: to the map's largest value (flow_direction: hue by direction)");
+  }
   ImGui::Checkbox("water surface", &settings.water);
   flowCheckbox("spray", &settings.spray);
   if (ImGui::IsItemHovered())
@@ -477,7 +488,7 @@ void filePanel(Actions& actions, PanelState& state) {
   labelRoom({"name"});
   ImGui::InputText("name", state.path, sizeof state.path);
   ImGui::PopItemWidth();
-  hint("files: <name>.json, .ckpt, _height.png, .r32, .obj, _erosion.png, _shot.png");
+  hint("files: <name>.json, .ckpt, _height.png, .r32, .obj, _erosion.png, _maps/, _maps_exr/, _shot.png");
   const std::string base = state.path;
   using K = cmd::Save::Kind;
   if (flowButton("save scene", true)) actions.command(cmd::Save{K::kScene, base + ".json"});
@@ -494,6 +505,10 @@ void filePanel(Actions& actions, PanelState& state) {
   if (flowButton("raw float")) actions.command(cmd::Save{K::kHeightRaw, base + ".r32"});
   if (flowButton("mesh OBJ")) actions.command(cmd::Save{K::kMesh, base + ".obj"});
   if (flowButton("erosion map")) actions.command(cmd::Save{K::kErosionMap, base + "_erosion.png"});
+  if (flowButton("maps PNG")) actions.command(cmd::Save{K::kMaps, base + "_maps"});
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("every erosion map as a 16-bit PNG, with maps.json, into <name>_maps/");
+  if (flowButton("maps EXR")) actions.command(cmd::Save{K::kMapsExr, base + "_maps_exr"});
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("every erosion map as float32 EXR, with maps.json, into <name>_maps_exr/");
   if (flowButton("screenshot")) {
     try {
       state.screenshot(base + "_shot.png");

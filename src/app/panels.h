@@ -31,6 +31,8 @@ struct TimePlots {
 /// What the panels keep between frames besides the scene.
 struct PanelState {
   RenderSettings settings;
+  /// The erosion map last asked of the worker (cmd::ShowMap), "" for none.
+  std::string shownMap;
   /// What the picture can afford each frame (the surface's grid, effects); the Display panel
   /// shows its choice and lets the user pin one.
   RenderBudget budget;

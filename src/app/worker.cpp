@@ -1,9 +1,11 @@
 #include "app/worker.h"
 
+#include "engine/maps.h"
 #include "engine/step_driver.h"
 
 #include "scene/checkpoint.h"
 #include "scene/output.h"
+#include "scene/run_outputs.h"
 #include "scene/scene_json.h"
 
 #include <algorithm>
@@ -38,7 +40,8 @@ const char* editName(const SimCommand& c) {
                                       "a checkpoint resumed",
                                       nullptr,  // a snapshot taken
                                       "a snapshot restored",
-                                      nullptr};  // a snapshot deleted
+                                      nullptr,   // a snapshot deleted
+                                      nullptr};  // the map the frames carry
   static_assert(std::size(names) == std::variant_size_v<SimCommand>);
   return names[c.index()];
 }
@@ -242,6 +245,11 @@ void SimulationWorker::apply(SimCommand& c) {
       restore(rs->id);
     } else if (auto* ds = std::get_if<cmd::DeleteSnapshot>(&c)) {
       deleteSnapshot(ds->id);
+    } else if (auto* sm = std::get_if<cmd::ShowMap>(&c)) {
+      const std::vector<std::string>& names = erosionMapNames();
+      if (!sm->name.empty() && std::find(names.begin(), names.end(), sm->name) == names.end())
+        throw std::invalid_argument("no erosion map called '" + sm->name + "'");
+      frameMap_ = sm->name;
     } else if (auto* f = std::get_if<cmd::SetStepsPerFrame>(&c)) {
       if (f->steps < 1 || f->steps > 1000) throw std::invalid_argument("steps per frame must lie in [1, 1000]");
       stepsPerFrame_ = f->steps;
@@ -273,6 +281,11 @@ void SimulationWorker::save(const cmd::Save& sv) {
     case K::kHeightRaw: writeHeightRaw(sv.path, world_->settledTerrain()); break;
     case K::kMesh: writeTerrainObj(sv.path, world_->settledTerrain()); break;
     case K::kErosionMap: writeErosionPng(sv.path, world_->settledTerrain(), world_->heightChange()); break;
+    case K::kMaps:
+    case K::kMapsExr:
+      writeErosionMaps(sv.path, erosionMaps(*world_), world_->terrain().nx(), world_->terrain().nz(), erosionMapNames(),
+                       sv.kind == K::kMapsExr ? MapFormat::kExr : MapFormat::kPng16);
+      break;
   }
   notice_ = "wrote " + sv.path;
 }
@@ -365,7 +378,7 @@ void SimulationWorker::deleteSnapshot(int id) {
 
 void SimulationWorker::publish(double stepsPerSecond) {
   Snapshot& s = frames_.back();
-  s.frame = makeFrame(*world_);
+  s.frame = makeFrame(*world_, frameMap_);
   s.params = world_->params();
   s.sources = world_->sources();
   s.sinks = world_->sinks();

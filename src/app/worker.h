@@ -51,7 +51,9 @@ struct SetEffects { Effects effects; };  ///< e.g. rain on/off: takes effect wit
 /// Files, written or read by the worker (it owns the World): the edited scene as JSON, a
 /// checkpoint, the terrain as a 16-bit PNG, raw float, OBJ mesh or erosion map.
 struct Save {
-  enum class Kind { kScene, kCheckpoint, kHeightPng, kHeightRaw, kMesh, kErosionMap } kind;
+  /// kMaps: every erosion map (engine/maps.h) into the folder `path` as 16-bit PNGs with
+  /// maps.json; kMapsExr: the same as float32 EXR.
+  enum class Kind { kScene, kCheckpoint, kHeightPng, kHeightRaw, kMesh, kErosionMap, kMaps, kMapsExr } kind;
   std::string path;
 };
 struct LoadCheckpoint { std::string path; };
@@ -61,6 +63,8 @@ struct TakeSnapshot {};
 /// again with other ones); its sources and sinks come back with it.
 struct RestoreSnapshot { int id; };
 struct DeleteSnapshot { int id; };
+/// The erosion map the published frames carry (Frame::map; "" for none).
+struct ShowMap { std::string name; };
 }  // namespace cmd
 
 using SimCommand =
@@ -68,7 +72,7 @@ using SimCommand =
                  cmd::UpdateSink, cmd::RemoveSink, cmd::PaintWater, cmd::Pause, cmd::Resume,
                  cmd::StepOnce, cmd::Reset, cmd::Load, cmd::SetStepsPerFrame, cmd::SetEffects,
                  cmd::Save, cmd::LoadCheckpoint, cmd::TakeSnapshot, cmd::RestoreSnapshot,
-                 cmd::DeleteSnapshot>;
+                 cmd::DeleteSnapshot, cmd::ShowMap>;
 
 /// A kept world state as the UI lists it.
 struct SnapshotInfo {
@@ -165,6 +169,7 @@ class SimulationWorker {
   long stepsToDo_ = 0;
   long generation_ = 0;
   std::string error_, notice_;
+  std::string frameMap_;  ///< the erosion map the frames carry (cmd::ShowMap)
   Effects worldEffects_;  ///< what world_ was built with (SetEffects waits for a reset)
   std::vector<Kept> kept_;
   std::deque<Kept> ring_;      ///< automatic states, oldest first

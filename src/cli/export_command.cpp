@@ -2,6 +2,7 @@
 // (docs/exports.md), so a long run is exported once it is done, and again in another format later.
 #include <cmath>
 #include <filesystem>
+#include <map>
 #include <iostream>
 #include <nlohmann/json.hpp>
 
@@ -43,8 +44,8 @@ std::pair<int, int> parseGridSize(const std::string& text) {
 }
 
 int exportCheckpoint(const ExportOptions& o) {
-  if (o.format != "png16" && o.format != "r16" && o.format != "exr")
-    throw InputError("--format: expected png16, r16 or exr, found '" + o.format + "'");
+  if (o.format != "png16" && o.format != "r16" && o.format != "exr" && o.format != "geotiff")
+    throw InputError("--format: expected png16, r16, exr or geotiff, found '" + o.format + "'");
   const std::pair<int, int> size = o.resample.empty() ? std::pair<int, int>{0, 0} : parseGridSize(o.resample);
   std::vector<std::string> maps;
   try {
@@ -54,6 +55,16 @@ int exportCheckpoint(const ExportOptions& o) {
   }
   Scene scene;
   const std::unique_ptr<World> world = resumeFromCheckpoint(o.checkpoint, scene, "");
+  // GeoTIFF: the input elevation data's georeference, read again from terrain.file (before
+  // anything is written: a file that is gone or unreadable is refused).
+  Georeference where;
+  if (o.format == "geotiff") {
+    try {
+      where = gridGeoreference(scene.spec.terrain, world->terrain().nx(), world->terrain().nz());
+    } catch (const TerrainError& e) {
+      throw InputError(std::string("terrain.file of the checkpoint's scene: ") + e.what());
+    }
+  }
   std::error_code ec;
   // A run's own folder keeps its run's heights: an export goes elsewhere.
   if (fs::exists(fs::path(o.out) / "summary.json", ec))
@@ -69,8 +80,20 @@ int exportCheckpoint(const ExportOptions& o) {
     hf = Heightfield(size.first, size.second, settled.dx() * (nx - 1) / (size.first - 1),
                      settled.dz() * (nz - 1) / (size.second - 1), settled.x0(), settled.z0());
     hf.heights() = resampleGrid(settled.heights(), nx, nz, size.first, size.second);
-    for (TerrainMap& m : mapValues) m.values = resampleGrid(m.values, nx, nz, size.first, size.second);
+    for (TerrainMap& m : mapValues) {
+      m.values = resampleGrid(m.values, nx, nz, size.first, size.second);
+      if (!m.second.empty()) m.second = resampleGrid(m.second, nx, nz, size.first, size.second);
+    }
+    // The same rectangle: vertex (0, 0) stays where it was, the pixels shrink or grow.
+    if (where.valid) {
+      const double sx = double(nx - 1) / (size.first - 1), sz = double(nz - 1) / (size.second - 1);
+      const double cx = 0.5 - 0.5 * sx, cz = 0.5 - 0.5 * sz;
+      const auto g = where.transform;
+      where.transform = {g[0] + g[1] * cx + g[2] * cz, g[1] * sx, g[2] * sz, g[3] + g[4] * cx + g[5] * cz, g[4] * sx, g[5] * sz};
+    }
   }
+  const bool georeferenced = where.valid;
+  if (o.format == "geotiff" && !where.valid) where = localGeoreference(hf.x0(), hf.z0(), hf.dx(), hf.dz());
   json heights = {{"nx", hf.nx()}, {"nz", hf.nz()}, {"dx_m", hf.dx()}, {"dz_m", hf.dz()},
                   {"x0_m", hf.x0()}, {"z0_m", hf.z0()}};
   if (o.format == "png16") {
@@ -81,6 +104,17 @@ int exportCheckpoint(const ExportOptions& o) {
     writeGridExr(dir / "height.exr", hf.nx(), hf.nz(), hf.heights());
     heights["file"] = "height.exr", heights["min_m"] = hf.minHeight(), heights["max_m"] = hf.maxHeight();
     heights["mapping"] = "float32 channel Y, the height in metres; row k is z = z0 + k dz, column i is x = x0 + i dx";
+  } else if (o.format == "geotiff") {
+    const TerrainSpec& t = scene.spec.terrain;
+    std::map<std::string, std::string> meta = {
+        {"SCOUR_CHECKPOINT", o.checkpoint},
+        {"SCOUR_STEP", std::to_string(world->steps())},
+        {"SCOUR_HEIGHTS", "metres at the scene's scale" + std::string(t.kind == "heightmap" && t.heights == "scaled" ? " (the input scaled to terrain.height_min..height_max)" : "")}};
+    writeGeoTiff(dir / "height.tif", hf.nx(), hf.nz(), {&hf.heights()}, where, "m", meta);
+    heights["file"] = "height.tif", heights["min_m"] = hf.minHeight(), heights["max_m"] = hf.maxHeight();
+    heights["mapping"] = "float32 band 1, the height in metres at the scene's scale; row k is z = z0 + k dz, column i is x = x0 + i dx";
+    heights["georeference"] = georeferenced ? json{{"from", t.file}, {"geotransform", where.transform}, {"crs_wkt", where.crs}}
+                                            : json{{"from", "none: local metres from the grid's origin"}, {"geotransform", where.transform}};
   } else {
     const auto [lo, hi] = writeHeightR16(dir / "height.r16", hf);
     heights["file"] = "height.r16", heights["min_m"] = lo, heights["max_m"] = hi;
@@ -97,7 +131,9 @@ int exportCheckpoint(const ExportOptions& o) {
                   {"morphological_s", world->morphologicalTime()},
                   {"heights", heights},
                   {"height_r32", "float32 little-endian, nz rows of nx heights [m]"},
-                  {"maps", maps.empty() ? json(nullptr) : writeErosionMaps(dir / "maps", mapValues, hf.nx(), hf.nz(), maps, o.format == "exr")}};
+                  {"maps", maps.empty() ? json(nullptr) : writeErosionMaps(dir / "maps", mapValues, hf.nx(), hf.nz(), maps,
+                                                                   o.format == "exr" ? MapFormat::kExr : o.format == "geotiff" ? MapFormat::kGeoTiff : MapFormat::kPng16,
+                                                                   &where)}};
   writeAtomically(dir / "export.json", [&](std::ostream& out) { out << summary.dump(2) << "\n"; });
   std::cout << "exported step " << world->steps() << " of " << o.checkpoint << " (" << hf.nx() << " x "
             << hf.nz() << " heights, " << maps.size() << " maps) to " << dir.string() << "\n";
@@ -111,10 +147,10 @@ Command addExportCommand(CLI::App& app) {
   CLI::App* c = app.add_subcommand("export", "Write a checkpoint's heights and erosion maps for an engine");
   c->add_option("checkpoint", o->checkpoint, "A checkpoint (.ckpt) of scour run")->required();
   c->add_option("--out", o->out, "Output directory")->required();
-  c->add_option("--maps", o->maps, "Erosion maps: all (default), none, or a list: wear,deposition,sediment");
+  c->add_option("--maps", o->maps, "Erosion maps: all (default), none, or a list of wear, deposition, sediment, flow, wetness, shear_peak, shear_mean, flow_direction");
   c->add_option("--resample", o->resample,
                 "Resample heights and maps to WxH vertices over the same rectangle (Unreal: 1009x1009, 2017x2017, 4033x4033; Unity: 513x513, 1025x1025, 2049x2049)");
-  c->add_option("--format", o->format, "Heights (and maps) as png16 (16-bit PNG; default), r16 (Unreal's 16-bit raw heights, PNG maps) or exr (float32 OpenEXR)");
+  c->add_option("--format", o->format, "Heights (and maps) as png16 (16-bit PNG; default), r16 (Unreal's 16-bit raw heights, PNG maps), exr (float32 OpenEXR) or geotiff (float32 GeoTIFF with the input elevation data's georeference)");
   return [o] { return exportCheckpoint(*o); };
 }
 

@@ -1,10 +1,12 @@
 // scour render: one picture of a checkpoint or of a scene's start; and the FrameWriter that
 // `scour run --frames` uses.
+#include <algorithm>
 #include <cstdio>
 #include <iostream>
 
 #include "cli/commands.h"
 #include "cli/render_options.h"
+#include "engine/maps.h"
 #include "render/context.h"
 #include "render/renderer.h"
 #include "scene/checkpoint.h"
@@ -25,7 +27,11 @@ RenderSettings::Terrain parseTerrain(const std::string& text) {
   if (text == "erosion") return RenderSettings::Terrain::kErosion;
   if (text == "shaded") return RenderSettings::Terrain::kShaded;
   if (text == "sediment") return RenderSettings::Terrain::kSediment;
-  throw InputError("--terrain: expected erosion, shaded or sediment, found '" + text + "'");
+  const std::vector<std::string>& maps = erosionMapNames();
+  if (std::find(maps.begin(), maps.end(), text) != maps.end()) return RenderSettings::Terrain::kMap;
+  std::string list;
+  for (const std::string& m : maps) list += ", " + m;
+  throw InputError("--terrain: expected erosion, shaded, sediment or an erosion map (" + list.substr(2) + "), found '" + text + "'");
 }
 
 void requirePng(const std::string& flag, const std::string& path) {
@@ -36,7 +42,7 @@ void requirePng(const std::string& flag, const std::string& path) {
 void addRenderOptions(CLI::App* c, RenderOptions& o) {
   c->add_option("--gl", o.gl, "GL context: egl (default), osmesa, window");
   c->add_option("--size", o.size, "Picture size WxH (default 960x540)");
-  c->add_option("--terrain", o.terrain, "Terrain colours: erosion (default), shaded, sediment");
+  c->add_option("--terrain", o.terrain, "Terrain colours: erosion (default), shaded, sediment, or an erosion map: wear, deposition, sediment, flow, wetness, shear_peak, shear_mean, flow_direction");
   c->add_option("--particles", o.particles, "Particle view: off (default), sediment, speed");
   c->add_flag("--no-water", o.noWater, "Leave out the water surface");
   c->add_flag("--no-reflections", o.noReflections, "Water without cube-map reflections");
@@ -58,6 +64,7 @@ FrameWriter::FrameWriter(const RenderOptions& o) : impl_(std::make_unique<Impl>(
   const auto [w, h] = parseSize(o.size, 16);
   RenderSettings& s = impl_->settings;
   s.terrain = parseTerrain(o.terrain);
+  if (s.terrain == RenderSettings::Terrain::kMap) s.map = o.terrain;
   if (o.particles == "off") s.particles = RenderSettings::Particles::kOff;
   else if (o.particles == "sediment") s.particles = RenderSettings::Particles::kSediment;
   else if (o.particles == "speed") s.particles = RenderSettings::Particles::kSpeed;
@@ -78,6 +85,10 @@ FrameWriter::FrameWriter(const RenderOptions& o) : impl_(std::make_unique<Impl>(
   }
   impl_->context = createGlContext(backend, w, h);
   impl_->renderer = std::make_unique<Renderer>(w, h);
+}
+
+std::string FrameWriter::map() const {
+  return impl_->settings.terrain == RenderSettings::Terrain::kMap ? impl_->settings.map : std::string();
 }
 
 FrameWriter::~FrameWriter() = default;
@@ -128,7 +139,7 @@ int renderPicture(const RenderCommandOptions& o) {
   FrameWriter writer(o.render);
   if (scene.spec.has_camera)
     writer.setSceneCamera(scene.spec.camera_eye.cast<float>(), scene.spec.camera_target.cast<float>());
-  writer.write(makeFrame(*world), o.out);
+  writer.write(makeFrame(*world, writer.map()), o.out);
   std::cout << "rendered step " << world->steps() << " (" << world->fluid().size() << " particles) to "
             << o.out << "\n";
   return kExitOk;

@@ -41,6 +41,8 @@ class FrameWriter {
   void write(const Frame& f, const std::string& path);
   /// The scene's camera, used unless --camera was given.
   void setSceneCamera(const Eigen::Vector3f& eye, const Eigen::Vector3f& target);
+  /// The erosion map --terrain asked for ("" for none): make the frames with it (makeFrame).
+  std::string map() const;
 
  private:
   struct Impl;

@@ -182,7 +182,7 @@ int runScene(const RunOptions& o) {
     if (!timelapse) return;
     if (last ? timelapse->lastStep() == world->steps() : !timelapse->due(world->steps(), world->morphologicalTime()))
       return;
-    frames->write(makeFrame(*world), timelapse->nextPicture().string());
+    frames->write(makeFrame(*world, frames->map()), timelapse->nextPicture().string());
     timelapse->added(world->steps(), world->time(), world->morphologicalTime(), world->factorNow());
   };
 
@@ -223,7 +223,7 @@ int runScene(const RunOptions& o) {
   };
   RunOutputs outputs(dir, {o.particlesEvery, o.metricsEvery, o.checkpointEvery, o.mesh, maps}, scene);
   outputs.start(*world);
-  if (o.framesEvery > 0) frames->write(makeFrame(*world), (dir / RunOutputs::frameName(world->steps())).string());
+  if (o.framesEvery > 0) frames->write(makeFrame(*world, frames->map()), (dir / RunOutputs::frameName(world->steps())).string());
   lapsePicture(false);
   std::string stoppedBy = bySteps ? "steps" : "time";
   long guardSeen = world->bedGuard().lowered;
@@ -246,7 +246,7 @@ int runScene(const RunOptions& o) {
                 << guard.lastFrom << " to " << world->morphologicalFactor() << "\n";
     }
     if (o.framesEvery > 0 && world->steps() % o.framesEvery == 0)
-      frames->write(makeFrame(*world), (dir / RunOutputs::frameName(world->steps())).string());
+      frames->write(makeFrame(*world, frames->map()), (dir / RunOutputs::frameName(world->steps())).string());
     lapsePicture(false);
     auto now = std::chrono::steady_clock::now();
     const double wall = std::chrono::duration<double>(now - start).count();
@@ -328,7 +328,7 @@ Command addRunCommand(CLI::App& app) {
   c->add_option("--metrics-every", o->metricsEvery, "Write a metrics.csv row every K steps (default 10)")
       ->check(kPositive);
   c->add_flag("--mesh", o->mesh, "Also write the final terrain as mesh.obj (with normals)");
-  c->add_option("--maps", o->maps, "Erosion maps written at the end into maps/: none (default), all, or a list: wear,deposition,sediment");
+  c->add_option("--maps", o->maps, "Erosion maps written at the end into maps/: none (default), all, or a list of wear, deposition, sediment, flow, wetness, shear_peak, shear_mean, flow_direction");
   auto* sets = c->add_option("--set", o->sets, "Override a parameter: key=value (repeatable)");
   c->add_option("--checkpoint-every", o->checkpointEvery,
                 "Write checkpoint_<step>.ckpt every K steps (resume with --resume)")

@@ -1,10 +1,13 @@
 #include "engine/frame.h"
 
+#include "engine/maps.h"
 #include "engine/world.h"
+
+#include <stdexcept>
 
 namespace scour {
 
-Frame makeFrame(const World& w) {
+Frame makeFrame(const World& w, const std::string& map) {
   Frame f;
   f.step = w.steps();
   f.time = w.time();
@@ -28,7 +31,15 @@ Frame makeFrame(const World& w) {
   const std::vector<double>& h0 = w.initialTerrain().heights();
   f.change.resize(h0.size());
   for (size_t i = 0; i < h0.size(); ++i) f.change[i] = float(hf.heights()[i] - h0[i]);
-  return f;
+  if (map.empty()) return f;
+  for (TerrainMap& m : erosionMaps(w))
+    if (m.name == map) {
+      f.mapName = m.name;
+      f.map.assign(m.values.begin(), m.values.end());
+      f.map2.assign(m.second.begin(), m.second.end());
+      return f;
+    }
+  throw std::invalid_argument("no erosion map called '" + map + "'");
 }
 
 }  // namespace scour

@@ -4,6 +4,7 @@
 
 #include <Eigen/Core>
 #include <cstdint>
+#include <string>
 #include <vector>
 
 namespace scour {
@@ -23,11 +24,16 @@ struct Frame {
   int nx = 0, nz = 0;
   double dx = 0, dz = 0, x0 = 0, z0 = 0;
   std::vector<float> height, change;
+  /// One erosion map (engine/maps.h) when asked for: its name, its values per vertex (flow_direction:
+  /// x in map, z in map2), else empty.
+  std::string mapName;
+  std::vector<float> map, map2;
 
   size_t particles() const { return position.size(); }
 };
 
-/// Copies what a Frame holds out of the world.
-Frame makeFrame(const World& w);
+/// Copies what a Frame holds out of the world, with the erosion map called `map` (none for "";
+/// std::invalid_argument for a name that is not a map).
+Frame makeFrame(const World& w, const std::string& map = "");
 
 }  // namespace scour

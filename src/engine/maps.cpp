@@ -8,7 +8,8 @@
 namespace scour {
 
 const std::vector<std::string>& erosionMapNames() {
-  static const std::vector<std::string> names = {"wear", "deposition", "sediment"};
+  static const std::vector<std::string> names = {"wear",       "deposition", "sediment",      "flow",
+                                                 "wetness",    "shear_peak", "shear_mean",    "flow_direction"};
   return names;
 }
 
@@ -41,9 +42,9 @@ std::vector<double> suspendedAtVertices(const World& w) {
 std::vector<TerrainMap> erosionMaps(const World& w) {
   const std::vector<double> dh = w.heightChange();
   const std::vector<double>& area = w.vertexArea();
-  TerrainMap wear{"wear", "m", "depth eroded since the start (the settled terrain)", {}};
-  TerrainMap deposition{"deposition", "m", "depth deposited since the start (the settled terrain)", {}};
-  TerrainMap sediment{"sediment", "m", "sediment suspended in the water above, as a depth of soil, now", {}};
+  TerrainMap wear{"wear", "m", "depth eroded since the start (the settled terrain)", {}, {}};
+  TerrainMap deposition{"deposition", "m", "depth deposited since the start (the settled terrain)", {}, {}};
+  TerrainMap sediment{"sediment", "m", "sediment suspended in the water above, as a depth of soil, now", {}, {}};
   wear.values.resize(dh.size()), deposition.values.resize(dh.size());
   for (size_t v = 0; v < dh.size(); ++v) {
     wear.values[v] = std::max(0.0, -dh[v]);
@@ -51,7 +52,25 @@ std::vector<TerrainMap> erosionMaps(const World& w) {
   }
   sediment.values = suspendedAtVertices(w);
   for (size_t v = 0; v < area.size(); ++v) sediment.values[v] /= area[v];
-  return {std::move(wear), std::move(deposition), std::move(sediment)};
+  // What the flow record holds (flow_record.h), over the bed time it covers.
+  const FlowRecord& r = w.flowRecord();
+  TerrainMap flow{"flow", "m³/m", "near-bed water that passed over, per unit width, over the run", r.flow(), {}};
+  TerrainMap wetness{"wetness", "-", "fraction of the run's bed time with water within h above", r.wetTime(), {}};
+  TerrainMap peak{"shear_peak", "Pa", "largest bed shear stress τ of eq. (9) over the run", r.shearPeak(), {}};
+  TerrainMap mean{"shear_mean", "Pa", "mean bed shear stress τ over the time it was wet", r.shearIntegral(), {}};
+  TerrainMap direction{"flow_direction", "-", "mean near-bed flow direction over the run, a unit vector (x, z)", r.flowX(), {}};
+  direction.second = r.flowZ();
+  for (size_t v = 0; v < dh.size(); ++v) {
+    const double wet = wetness.values[v];
+    wetness.values[v] = r.time() > 0 ? wet / r.time() : 0.0;
+    mean.values[v] = wet > 0 ? mean.values[v] / wet : 0.0;
+    const double len = std::hypot(direction.values[v], direction.second[v]);
+    direction.values[v] = len > 0 ? direction.values[v] / len : 0.0;
+    direction.second[v] = len > 0 ? direction.second[v] / len : 0.0;
+  }
+  std::vector<TerrainMap> maps;
+  for (TerrainMap* m : {&wear, &deposition, &sediment, &flow, &wetness, &peak, &mean, &direction}) maps.push_back(std::move(*m));
+  return maps;
 }
 
 std::vector<double> resampleGrid(const std::vector<double>& v, int nx, int nz, int nx2, int nz2) {

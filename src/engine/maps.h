@@ -16,6 +16,8 @@ struct TerrainMap {
   std::string unit;     ///< of each value
   std::string meaning;  ///< one line for a sidecar file or a panel
   std::vector<double> values;
+  /// A second channel (flow_direction: values the x and this the z component), else empty.
+  std::vector<double> second;
 };
 
 /// The maps' names, in the order erosionMaps returns them.
@@ -27,7 +29,11 @@ const std::vector<std::string>& erosionMapNames();
 /// sediment: the sediment suspended above each vertex now, as a depth of soil [m] (each
 /// particle's sediment shared among the four corners of the grid cell under it by bilinear
 /// weights, over the corner's area A_v; a particle beyond the terrain's edge counts at the
-/// nearest point of it), so Σ sediment·A_v is the suspended volume.
+/// nearest point of it), so Σ sediment·A_v is the suspended volume. Then what the flow record
+/// (flow_record.h) accumulated over the run: flow, the near-bed water that passed over each
+/// vertex per unit width [m³/m]; wetness, its wet bed time over the recorded bed time [0, 1];
+/// shear_peak and shear_mean, the largest τ and its mean over the wet time [Pa]; flow_direction,
+/// the unit vector of the summed near-bed flow (x in values, z in second; 0 where none passed).
 std::vector<TerrainMap> erosionMaps(const World& w);
 
 /// Values on an nx × nz grid resampled bilinearly onto nx2 × nz2 points spanning the same

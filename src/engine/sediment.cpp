@@ -278,19 +278,35 @@ void transferSediment(const SedimentConstants& k, const SedimentEffects& fx,
   for (size_t i = 0; i < n; ++i) f.sed[i] = std::clamp(f.sed[i] + delta[i], 0.0, room);
 }
 
+namespace {
+// Eq. (9): τ = K θⁿ, θ = v_rel / l, l clamped below at the constants' minimum distance [Pa].
+double pairShear(const SedimentConstants& k, double speed, double l) {
+  const double theta = speed / std::max(l, k.min_distance);
+  return k.shear_k * (k.shear_n == 0.5 ? std::sqrt(theta) : std::pow(theta, k.shear_n));
+}
+}  // namespace
+
+void bedShear(const SedimentConstants& k, const NeighborLists& bnbrs, const BoundaryParticles& b,
+              const Fluid& f, std::vector<float>& tau) {
+  const size_t n = f.size();
+  tau.resize(n);
+#pragma omp parallel for schedule(static)
+  for (size_t i = 0; i < n; ++i) {
+    double peak = -1.0;
+    const double speed = double(f.v[i].norm());
+    forEachNeighbor(bnbrs, f.x, b.x, i, [&](uint32_t, const Vec3f&, float r) {
+      peak = std::max(peak, pairShear(k, speed, double(r)));
+    });
+    tau[i] = float(peak);
+  }
+}
+
 void erode(const SedimentConstants& k, const NeighborLists& bnbrs, const BoundaryParticles& b,
            double dt, Fluid& f, TerrainAccumulator& acc, SedimentWorkspace& ws) {
   const size_t n = f.size();
   const double room = k.c_max * k.volume;
-  const bool sqrtLaw = k.shear_n == 0.5;
-  auto pairVolume = [&](double speed, double l, double area) {
-    // Eqs. (9)–(10): θ = v_rel / l, τ = K θⁿ, ε = K_ε (τ − τ_c) for τ > τ_c; mass L_b² ε Δt.
-    const double theta = speed / std::max(l, k.min_distance);
-    const double tau = k.shear_k * (sqrtLaw ? std::sqrt(theta) : std::pow(theta, k.shear_n));
-    if (tau <= k.tau_c) return 0.0;
-    return area * k.k_eps * (tau - k.tau_c) * dt / k.rho_s;
-  };
   BoundaryVolumes& eroded = ws.exchanges;
+  ws.tau.resize(n);
 #pragma omp parallel
   {
     const int threads = omp_get_num_threads(), t = omp_get_thread_num();
@@ -301,16 +317,22 @@ void erode(const SedimentConstants& k, const NeighborLists& bnbrs, const Boundar
     const size_t lo = blockBegin(n, size_t(threads), size_t(t));
     const size_t hi = blockBegin(n, size_t(threads), size_t(t) + 1);
     for (size_t i = lo; i < hi; ++i) {
+      ws.tau[i] = -1.0f;
       if (bnbrs.count(i) == 0) continue;
       const double speed = double(f.v[i].norm());
       const size_t first = mine.size();
-      double total = 0.0;
+      double total = 0.0, peak = -1.0;
       forEachNeighbor(bnbrs, f.x, b.x, i, [&](uint32_t bj, const Vec3f&, float r) {
-        const double v = pairVolume(speed, double(r), b.area[bj]);
+        // Eq. (10): ε = K_ε (τ − τ_c) for τ > τ_c; the pair's volume L_b² ε Δt / ρ_s.
+        const double tau = pairShear(k, speed, double(r));
+        peak = std::max(peak, tau);
+        if (tau <= k.tau_c) return;
+        const double v = b.area[bj] * k.k_eps * (tau - k.tau_c) * dt / k.rho_s;
         if (v <= 0.0) return;
         mine.emplace_back(bj, -v);
         total += v;
       });
+      ws.tau[i] = float(peak);
       if (total <= 0.0) continue;
       // Model.md: C_j ≤ C_max. The particle gains exactly the sum the terrain loses.
       const double space = std::max(room - f.sed[i], 0.0);

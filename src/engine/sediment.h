@@ -163,6 +163,8 @@ struct SedimentWorkspace {
   std::vector<float> conc, hind;
   std::vector<Scales> scale;
   std::vector<double> delta;
+  /// erode's (or bedShear's) bed shear stress per particle [Pa], −1 with no boundary neighbor.
+  std::vector<float> tau;
   /// Per thread, the (boundary particle, volume) exchanges of its block of fluid particles, in
   /// particle order (deposition, then erosion); kept so their memory is reused.
   std::vector<std::vector<std::pair<uint32_t, double>>> exchanges;
@@ -176,6 +178,11 @@ void transferSediment(const SedimentConstants& k, const SedimentEffects& fx,
                       const NeighborLists& nbrs, const NeighborLists& bnbrs,
                       const BoundaryParticles& b, double dt, Fluid& f, TerrainAccumulator& acc,
                       SedimentWorkspace& ws);
+
+/// Each particle's bed shear stress, the largest of eq. (9) over its boundary neighbors [Pa], −1
+/// for a particle with none (erode fills the same into its workspace's tau).
+void bedShear(const SedimentConstants& k, const NeighborLists& bnbrs, const BoundaryParticles& b,
+              const Fluid& f, std::vector<float>& tau);
 
 /// Step 2: erosion by shear stress; subtracts eroded volumes from the boundary particles' sums.
 void erode(const SedimentConstants& k, const NeighborLists& bnbrs, const BoundaryParticles& b,

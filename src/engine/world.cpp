@@ -36,6 +36,7 @@ const char* passName(Pass p) {
     case Pass::kSediment: return "sediment";
     case Pass::kErosion: return "erosion";
     case Pass::kTerrain: return "terrain";
+    case Pass::kFlowMaps: return "flow_maps";
     case Pass::kInvariants: return "invariants";
     case Pass::kCount: break;
   }
@@ -54,7 +55,8 @@ Table1Group table1Group(Pass p) {
     case Pass::kBoundaryNeighbors: return Table1Group::kBoundary;
     case Pass::kSediment:
     case Pass::kErosion:
-    case Pass::kTerrain: return Table1Group::kErosion;
+    case Pass::kTerrain:
+    case Pass::kFlowMaps: return Table1Group::kErosion;
     default: return Table1Group::kOther;
   }
 }
@@ -106,6 +108,7 @@ World::World(WorldDesc d)
   vertexArea_ = vertexAreas(terrain_);
   terrainReference_ = terrain_.minHeight();
   accumulator_.resize(terrain_.triangleCount(), terrain_.heights().size());
+  flow_.reset(terrain_.nx(), terrain_.nz());
   require(double(terrain_.heights().size()) <= Limits::kMaxTerrainVertices, "terrain: more vertices than the limit");
   supply_.maxParticles = size_t(particleCapacity(double(terrain_.heights().size())));
   require(d.particles.size() <= supply_.maxParticles, "particles: more than the memory limit allows");
@@ -371,6 +374,11 @@ StepStats World::step() {
     });
   }
   sedimentWork();
+  if (effects_.erosion || effects_.deposition)
+    timed(Pass::kFlowMaps, [&] {
+      if (!effects_.erosion) bedShear(sediment_, neighbors_.boundary(), boundary_, fluid_, sedimentWork_.tau);
+      flow_.record(terrain_, vertexArea_, fluid_, sedimentWork_.tau, sediment_.volume, params_.spacing, stepFactor_ * dt_);
+    });
   morphTime_ += stepFactor_ * dt_;
   timed(Pass::kInvariants, [&] { checkInvariants(); });
   StepStats s;

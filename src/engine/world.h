@@ -22,6 +22,7 @@
 #include <vector>
 
 #include "engine/boundary.h"
+#include "engine/flow_record.h"
 #include "engine/fluid.h"
 #include "engine/heightfield.h"
 #include "engine/neighbors.h"
@@ -47,6 +48,7 @@ enum class Pass {
   kSediment,
   kErosion,
   kTerrain,
+  kFlowMaps,
   kInvariants,
   kCount
 };
@@ -261,6 +263,9 @@ class World {
   const Heightfield& initialTerrain() const { return initialTerrain_; }
   /// Each vertex's share of the terrain's area, A_v (vertexAreas) [m²].
   const std::vector<double>& vertexArea() const { return vertexArea_; }
+  /// The flow, wetness and shear recorded over the run (flow_record.h; empty while neither
+  /// erosion nor deposition is on).
+  const FlowRecord& flowRecord() const { return flow_; }
   /// What the naive advection (sediment.advection = naive_gradient) made or destroyed since the
   /// start, and the extreme C before the clamp (from the initial range on). With the conservative
   /// forms the volumes stay 0 and the C range is the initial one.
@@ -323,6 +328,7 @@ class World {
   double terrainReference_ = 0;
   TerrainAccumulator accumulator_;
   SedimentWorkspace sedimentWork_;
+  FlowRecord flow_;
   Domain domain_;
   Effects effects_;
   Fluid fluid_;

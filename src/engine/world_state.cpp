@@ -82,8 +82,9 @@ constexpr uint32_t kStateTag = 0x444C5257;  // "WRLD"
 // factor in effect and the one asked for, what the factor added to the soil budget, the bed
 // guard's record) and the volumes waiting in the terrain accumulator (below
 // kTerrainApplyOverSpacing); older states load at the scene's factor with the bed's time equal to
-// the water's, and wait for none.
-constexpr uint32_t kStateVersion = 6;
+// the water's, and wait for none. Version 7 adds the flow record (flow_record.h: the bed time it
+// covers, its tiles and their values); older states load with an empty one, recording from then.
+constexpr uint32_t kStateVersion = 7;
 
 }  // namespace
 
@@ -152,6 +153,7 @@ void World::saveState(std::ostream& o) const {
   std::vector<double> waiting;
   for (int t : accumulator_.touched) waiting.push_back(accumulator_.volume[size_t(t)]);
   putVec(o, accumulator_.touched), putVec(o, waiting);
+  put(o, flow_.time()), putVec(o, flow_.tiles()), putVec(o, flow_.values());
 }
 
 void World::loadState(std::istream& in) {
@@ -230,7 +232,17 @@ void World::loadState(std::istream& in) {
       seen[size_t(t)] = 1;
     }
   }
+  FlowRecord flow;
+  flow.reset(terrain_.nx(), terrain_.nz());
+  if (version >= 7) {
+    double recorded = 0;
+    std::vector<int> tiles;
+    std::vector<double> values;
+    get(in, recorded, "flow maps"), getVec(in, tiles, "flow maps"), getVec(in, values, "flow maps");
+    flow.restore(terrain_.nx(), terrain_.nz(), recorded, std::move(tiles), std::move(values));
+  }
   f.scratch.clear();
+  flow_ = std::move(flow);
   supply_ = std::move(supply);
   time_ = time, dt_ = dt, step_ = step, densityRate_ = densityRate;
   fluid_ = std::move(f);
@@ -261,7 +273,7 @@ size_t World::memoryBytes() const {
          boundary_.x.capacity() * (sizeof(Vec3f) + 2 * sizeof(int) + sizeof(double) + sizeof(Eigen::Vector2f) + 1) +
          (sedimentWork_.conc.capacity() + sedimentWork_.hind.capacity()) * sizeof(float) +
          sedimentWork_.scale.capacity() * sizeof(SedimentWorkspace::Scales) +
-         sedimentWork_.delta.capacity() * sizeof(double);
+         sedimentWork_.delta.capacity() * sizeof(double) + sedimentWork_.tau.capacity() * sizeof(float) + flow_.bytes();
 }
 
 }  // namespace scour

@@ -137,7 +137,7 @@ Renderer::Renderer(int width, int height)
 }
 
 Renderer::~Renderer() {
-  deleteTextures({&heights_, &change_, &backColour_, &backDepth_, &finalColour_, &finalDepth_, &receiver_,
+  deleteTextures({&heights_, &change_, &map_, &map2_, &backColour_, &backDepth_, &finalColour_, &finalDepth_, &receiver_,
                   &receiverDepth_, &waterPos_, &waterNormal_, &waterLightDepth_, &caustic_, &sky_});
   deleteFramebuffers({&backFbo_, &finalFbo_, &receiverFbo_, &waterLightFbo_, &causticFbo_});
   for (GLuint* v : {&emptyVao_, &waterVao_, &particleVao_})
@@ -226,9 +226,11 @@ void Renderer::resize(int width, int height) {
 
 void Renderer::uploadTerrain(const Frame& f) {
   if (f.nx != terrainNx_ || f.nz != terrainNz_) {
-    deleteTextures({&heights_, &change_});
+    deleteTextures({&heights_, &change_, &map_, &map2_});
     heights_ = texture2D(GL_R32F, f.nx, f.nz, GL_NEAREST);
     change_ = texture2D(GL_R32F, f.nx, f.nz, GL_NEAREST);
+    map_ = texture2D(GL_R32F, f.nx, f.nz, GL_NEAREST);
+    map2_ = texture2D(GL_R32F, f.nx, f.nz, GL_NEAREST);
     terrainNx_ = f.nx, terrainNz_ = f.nz;
   }
   glTextureSubImage2D(heights_, 0, 0, 0, f.nx, f.nz, GL_RED, GL_FLOAT, f.height.data());
@@ -238,6 +240,15 @@ void Renderer::uploadTerrain(const Frame& f) {
   heightMin_ = *lo, heightMax_ = *hi;
   changeMax_ = 0;
   for (float c : f.change) changeMax_ = std::max(changeMax_, std::abs(c));
+  // The erosion map, when the frame has one (zeros otherwise).
+  const bool hasMap = f.map.size() == f.height.size();
+  mapPair_ = hasMap && f.map2.size() == f.height.size();
+  const std::vector<float> zeros(hasMap && mapPair_ ? 0 : f.height.size(), 0.0f);
+  glTextureSubImage2D(map_, 0, 0, 0, f.nx, f.nz, GL_RED, GL_FLOAT, hasMap ? f.map.data() : zeros.data());
+  glTextureSubImage2D(map2_, 0, 0, 0, f.nx, f.nz, GL_RED, GL_FLOAT, mapPair_ ? f.map2.data() : zeros.data());
+  mapMax_ = 0;
+  if (hasMap)
+    for (float v : f.map) mapMax_ = std::max(mapMax_, std::abs(v));
 }
 
 void Renderer::drawTerrain(const Program& p, const Eigen::Matrix4f& clipFromWorld) const {
@@ -377,10 +388,15 @@ void Renderer::render(const Frame& f, const Camera& c, const RenderSettings& s) 
   glProgramUniform1i(tp, terrain_.location("caustics"), caustics ? 1 : 0);
   glProgramUniform1f(tp, terrain_.location("causticStrength"), s.caustic_strength);
   glProgramUniform1i(tp, terrain_.location("change"), 1);
+  glProgramUniform1i(tp, terrain_.location("map"), 4);
+  glProgramUniform1i(tp, terrain_.location("map2"), 5);
+  glProgramUniform1f(tp, terrain_.location("mapScale"), std::max(mapMax_, 1e-30f));
+  glProgramUniform1i(tp, terrain_.location("mapPair"), mapPair_ ? 1 : 0);
   glProgramUniform1i(tp, terrain_.location("causticMap"), 2);
   glProgramUniform1i(tp, terrain_.location("waterFromLight"), 3);
   setMatrix(terrain_, "lightClipFromWorld", lightClipFromWorld_);
   glBindTextureUnit(1, change_);
+  glBindTextureUnit(4, map_), glBindTextureUnit(5, map2_);
   if (caustics) glBindTextureUnit(2, caustic_), glBindTextureUnit(3, waterPos_);
   drawTerrain(terrain_, clipFromWorld);
   // Final: the background, then the water over it, then the particles.

@@ -26,9 +26,13 @@ struct Camera {
 Camera overviewCamera(const Frame& f);
 
 struct RenderSettings {
-  enum class Terrain { kShaded, kErosion, kSediment };
+  /// kMap: the frame's erosion map (Frame::map), dark where it is 0, then blue to yellow by
+  /// √(value / its largest); a direction map (Frame::map2 too) by hue.
+  enum class Terrain { kShaded, kErosion, kSediment, kMap };
   enum class Particles { kOff, kSediment, kSpeed };
   Terrain terrain = Terrain::kErosion;
+  /// With kMap: which erosion map the frames are made with (engine/maps.h).
+  std::string map = "wetness";
   bool water = true;        ///< the marching-tetrahedra surface
   bool reflections = true;  ///< sky cube map in the water
   bool refraction = true;   ///< the terrain seen through the water
@@ -102,9 +106,10 @@ class Renderer {
   SurfaceSettings builtWith_;
   GLuint emptyVao_ = 0, waterVao_ = 0, particleVao_ = 0, particleBuffer_ = 0;
   size_t particleCap_ = 0;
-  GLuint heights_ = 0, change_ = 0;
+  GLuint heights_ = 0, change_ = 0, map_ = 0, map2_ = 0;
   int terrainNx_ = 0, terrainNz_ = 0;
-  float heightMin_ = 0, heightMax_ = 0, changeMax_ = 0;
+  float heightMin_ = 0, heightMax_ = 0, changeMax_ = 0, mapMax_ = 0;
+  bool mapPair_ = false;
   // Background (terrain) and final pictures.
   GLuint backFbo_ = 0, backColour_ = 0, backDepth_ = 0, finalFbo_ = 0, finalColour_ = 0, finalDepth_ = 0;
   // Seen from the sun: receiver positions, water position + normal, photons.

@@ -119,6 +119,17 @@ double writeMapPng16(const std::filesystem::path& path, int nx, int nz, const st
   return top;
 }
 
+void writeDirectionPng16(const std::filesystem::path& path, int nx, int nz, const std::vector<double>& x,
+                         const std::vector<double>& z) {
+  std::vector<unsigned char> rows(size_t(nx) * nz * 6, 0);
+  auto level = [](double c) { return uint16_t(std::lround((std::clamp(c, -1.0, 1.0) + 1.0) * 0.5 * 65535.0)); };
+  for (size_t k = 0; k < x.size(); ++k) {
+    const uint16_t rgb[3] = {level(x[k]), level(z[k]), uint16_t(x[k] != 0.0 || z[k] != 0.0 ? 65535 : 0)};
+    std::memcpy(&rows[k * 6], rgb, 6);
+  }
+  writeAtomically(path, [&](std::ostream& out) { writePng(out, nx, nz, 3, 16, rows); });
+}
+
 std::pair<double, double> writeHeightR16(const std::filesystem::path& path, const Heightfield& hf) {
   const double lo = hf.minHeight(), hi = hf.maxHeight(), range = hi > lo ? hi - lo : 1.0;
   writeAtomically(path, [&](std::ostream& out) {
@@ -132,15 +143,22 @@ std::pair<double, double> writeHeightR16(const std::filesystem::path& path, cons
 }
 
 void writeGridExr(const std::filesystem::path& path, int nx, int nz, const std::vector<double>& values) {
-  std::vector<float> px(values.begin(), values.end());
+  writeGridExr(path, nx, nz, {{"Y", &values}});
+}
+
+void writeGridExr(const std::filesystem::path& path, int nx, int nz,
+                  const std::vector<std::pair<std::string, const std::vector<double>*>>& channels) {
+  std::vector<std::vector<float>> px;
+  for (const auto& c : channels) px.emplace_back(c.second->begin(), c.second->end());
   Imf::StdOSStream stream;
   try {
     Imf::Header header(nx, nz);
     header.compression() = Imf::ZIP_COMPRESSION;
-    header.channels().insert("Y", Imf::Channel(Imf::FLOAT));
+    for (const auto& c : channels) header.channels().insert(c.first, Imf::Channel(Imf::FLOAT));
     Imf::OutputFile file(stream, header);
     Imf::FrameBuffer fb;
-    fb.insert("Y", Imf::Slice(Imf::FLOAT, reinterpret_cast<char*>(px.data()), sizeof(float), size_t(nx) * sizeof(float)));
+    for (size_t c = 0; c < channels.size(); ++c)
+      fb.insert(channels[c].first, Imf::Slice(Imf::FLOAT, reinterpret_cast<char*>(px[c].data()), sizeof(float), size_t(nx) * sizeof(float)));
     file.setFrameBuffer(fb);
     file.writePixels(nz);
   } catch (const std::exception& e) {

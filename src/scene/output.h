@@ -34,6 +34,11 @@ std::pair<double, double> writeHeightPng16(const std::filesystem::path& path, co
 /// value (all 0 when it is 0; negative values are written as 0). Returns top.
 double writeMapPng16(const std::filesystem::path& path, int nx, int nz, const std::vector<double>& values);
 
+/// A direction map as a 16-bit RGB PNG, like a normal map: R = (x + 1) / 2, G = (z + 1) / 2 of
+/// unit components in [−1, 1], B = 1 where there is a direction and 0 where there is none.
+void writeDirectionPng16(const std::filesystem::path& path, int nx, int nz, const std::vector<double>& x,
+                         const std::vector<double>& z);
+
 /// Unreal Engine's 16-bit raw heightmap: uint16 little-endian, row-major as the PNG, v =
 /// round((h − lo) / (hi − lo) · 65535). Returns {lo, hi}.
 std::pair<double, double> writeHeightR16(const std::filesystem::path& path, const Heightfield& hf);
@@ -41,6 +46,9 @@ std::pair<double, double> writeHeightR16(const std::filesystem::path& path, cons
 /// A grid of values as a float32 OpenEXR image with one channel, Y (ZIP compression), row k of the
 /// image the grid's row k. The values as float, unscaled: heights in metres, a map in its unit.
 void writeGridExr(const std::filesystem::path& path, int nx, int nz, const std::vector<double>& values);
+/// The same with named channels (flow_direction: R and G), each nx × nz values.
+void writeGridExr(const std::filesystem::path& path, int nx, int nz,
+                  const std::vector<std::pair<std::string, const std::vector<double>*>>& channels);
 
 /// Raw float32, little-endian, row-major (rows of nx values, nz rows; same order as the PNG).
 void writeHeightRaw(const std::filesystem::path& path, const Heightfield& hf);

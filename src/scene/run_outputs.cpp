@@ -77,27 +77,40 @@ void RunOutputs::afterStep(const World& w, const StepRecord& r) {
 
 // Heights now and their change since the start, with how to read them back.
 json writeErosionMaps(const fs::path& dir, const std::vector<TerrainMap>& maps, int nx, int nz,
-                      const std::vector<std::string>& names, bool exr) {
+                      const std::vector<std::string>& names, MapFormat format, const Georeference* where) {
   std::error_code ec;
   fs::create_directories(dir, ec);
   if (ec) throw std::runtime_error("cannot create directory '" + dir.string() + "': " + ec.message());
+  const char* grid = "row k is z = z0 + k dz, column i is x = x0 + i dx";
   json out = json::object();
   for (const TerrainMap& m : maps) {
     if (std::find(names.begin(), names.end(), m.name) == names.end()) continue;
-    if (exr) {
-      writeGridExr(dir / (m.name + ".exr"), nx, nz, m.values);
-      out[m.name] = {{"file", m.name + ".exr"},
-                     {"unit", m.unit},
-                     {"meaning", m.meaning},
-                     {"mapping", "float32 channel Y, the value in its unit; row k is z = z0 + k dz, column i is x = x0 + i dx"}};
-      continue;
+    const bool pair = !m.second.empty();
+    json entry = {{"unit", m.unit}, {"meaning", m.meaning}};
+    if (format == MapFormat::kExr) {
+      if (pair)
+        writeGridExr(dir / (m.name + ".exr"), nx, nz, {{"R", &m.values}, {"G", &m.second}});
+      else
+        writeGridExr(dir / (m.name + ".exr"), nx, nz, m.values);
+      entry["file"] = m.name + ".exr";
+      entry["mapping"] = std::string(pair ? "float32 channels R (x) and G (z)" : "float32 channel Y, the value in its unit") + "; " + grid;
+    } else if (format == MapFormat::kGeoTiff) {
+      std::vector<const std::vector<double>*> bands = {&m.values};
+      if (pair) bands.push_back(&m.second);
+      writeGeoTiff(dir / (m.name + ".tif"), nx, nz, bands, where ? *where : Georeference{}, m.unit,
+                   {{"SCOUR_MAP", m.name}, {"SCOUR_MEANING", m.meaning}});
+      entry["file"] = m.name + ".tif";
+      entry["mapping"] = std::string(pair ? "float32 bands 1 (x) and 2 (z)" : "float32 band 1, the value in its unit") + "; " + grid;
+    } else if (pair) {
+      writeDirectionPng16(dir / (m.name + ".png"), nx, nz, m.values, m.second);
+      entry["file"] = m.name + ".png";
+      entry["mapping"] = std::string("16-bit RGB: x = 2 R / 65535 - 1, z = 2 G / 65535 - 1, B = 65535 where there is a direction; ") + grid;
+    } else {
+      entry["file"] = m.name + ".png";
+      entry["white"] = writeMapPng16(dir / (m.name + ".png"), nx, nz, m.values);
+      entry["mapping"] = std::string("value = v / 65535 * white; ") + grid;
     }
-    const double top = writeMapPng16(dir / (m.name + ".png"), nx, nz, m.values);
-    out[m.name] = {{"file", m.name + ".png"},
-                   {"unit", m.unit},
-                   {"meaning", m.meaning},
-                   {"white", top},
-                   {"mapping", "value = v / 65535 * white; row k is z = z0 + k dz, column i is x = x0 + i dx"}};
+    out[m.name] = entry;
   }
   for (const std::string& n : names)
     if (!out.contains(n)) throw std::runtime_error("no erosion map called '" + n + "'");

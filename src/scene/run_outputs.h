@@ -11,6 +11,7 @@
 
 #include "engine/maps.h"
 #include "engine/step_driver.h"
+#include "scene/geodata.h"
 #include "scene/presets.h"
 
 namespace scour {
@@ -19,8 +20,13 @@ namespace scour {
 /// DIR/<name>.exr, float32, the values in their unit), and DIR/maps.json saying for each its
 /// file, unit, meaning and (PNG) the value white stands for; DIR is made. Returns maps.json's
 /// object. std::runtime_error for a name not among the maps.
+enum class MapFormat { kPng16, kExr, kGeoTiff };
+/// `format` kExr: float32 EXR, two-channel maps as R and G; kGeoTiff: float32 GeoTIFF (two bands
+/// for a two-channel map) with the georeference `where` (none when null); kPng16: flow_direction
+/// as writeDirectionPng16.
 nlohmann::json writeErosionMaps(const std::filesystem::path& dir, const std::vector<TerrainMap>& maps, int nx,
-                                int nz, const std::vector<std::string>& names, bool exr = false);
+                                int nz, const std::vector<std::string>& names, MapFormat format = MapFormat::kPng16,
+                                const Georeference* where = nullptr);
 /// "all", "none" or a comma-separated list of erosionMapNames(); std::invalid_argument naming
 /// `flag` otherwise.
 std::vector<std::string> parseMapNames(const std::string& flag, const std::string& text);

@@ -15,6 +15,7 @@
 #include <sstream>
 
 #include "scene/assets.h"
+#include "scene/geodata.h"
 #include "scene/input_file.h"
 #include "scene/presets.h"
 
@@ -169,6 +170,9 @@ Gray readHeightmap(const TerrainSpec& t) {
     g = readRaw(t);
   } else if (endsWith(f, ".exr")) {
     g = readExr(f);
+  } else if (isGdalRaster(f)) {
+    GeoRaster r = readGeoRaster(f);
+    g.w = r.width, g.h = r.height, g.v = std::move(r.values);
   } else if (f.rfind("builtin:", 0) == 0) {
     const Asset* a = findAsset(f);
     if (!a) {
@@ -209,9 +213,9 @@ void fillFromHeightmap(const TerrainSpec& t, Heightfield& hf) {
       hf.at(i, k) = (1 - fw) * ((1 - fu) * at(0, 0) + fu * at(1, 0)) + fw * ((1 - fu) * at(0, 1) + fu * at(1, 1));
     }
   if (t.heights == "metres") {
-    if (!endsWith(t.file, ".r32") && !endsWith(t.file, ".exr"))
-      throw TerrainError(t.file + ": terrain.heights \"metres\" needs a float heightmap (.r32 or .exr); "
-                         "an image's levels are not metres (use height_min and height_max)");
+    if (!endsWith(t.file, ".r32") && !endsWith(t.file, ".exr") && !isGdalRaster(t.file))
+      throw TerrainError(t.file + ": terrain.heights \"metres\" needs elevation data or a float heightmap "
+                         "(.tif, .hgt, .asc, … or .r32, .exr); an image's levels are not metres (use height_min and height_max)");
     return;  // the file's values, as they are
   }
   // Scale to the range the scene asks for.

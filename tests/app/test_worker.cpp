@@ -4,10 +4,14 @@
 // with ThreadSanitizer in scour_tsan_tests, where parameter edits arrive during steps.
 #include <catch2/catch.hpp>
 
+#include <unistd.h>
+
 #include <chrono>
+#include <filesystem>
 #include <thread>
 
 #include "app/worker.h"
+#include "engine/maps.h"
 
 using namespace scour;
 
@@ -249,4 +253,29 @@ TEST_CASE("parameter edits arriving during steps are safe", "[app][worker][tsan]
   CHECK(frames > 3);
   INFO(w.latest().error);
   CHECK(w.latest().error.empty());
+}
+
+TEST_CASE("the frames carry the erosion map the display asks for; the File panel writes them all", "[app][worker]") {
+  SimulationWorker w(small(), /*paused=*/true);
+  REQUIRE(waitFor(w, [](const Snapshot& s) { return s.paused; }));
+  CHECK(w.latest().frame.map.empty());
+  w.post(cmd::ShowMap{"flow_direction"});
+  w.post(cmd::StepOnce{});
+  REQUIRE(waitFor(w, [](const Snapshot& s) { return s.frame.mapName == "flow_direction"; }));
+  const Frame& f = w.latest().frame;
+  CHECK(f.map.size() == f.height.size());
+  CHECK(f.map2.size() == f.height.size());
+  w.post(cmd::ShowMap{"nonsense"});
+  w.post(cmd::StepOnce{});
+  REQUIRE(waitFor(w, [](const Snapshot& s) { return !s.error.empty(); }));
+  CHECK(w.latest().error == "no erosion map called 'nonsense'");
+  w.post(cmd::ShowMap{""});
+  w.post(cmd::StepOnce{});
+  REQUIRE(waitFor(w, [](const Snapshot& s) { return s.frame.mapName.empty() && s.frame.map.empty(); }));
+  const std::filesystem::path dir = std::filesystem::temp_directory_path() / ("scour_worker_maps_" + std::to_string(::getpid()));
+  w.post(cmd::Save{cmd::Save::Kind::kMaps, dir.string()});
+  REQUIRE(waitFor(w, [&](const Snapshot& s) { return s.notice == "wrote " + dir.string(); }));
+  for (const std::string& m : erosionMapNames()) CHECK(std::filesystem::exists(dir / (m + ".png")));
+  CHECK(std::filesystem::exists(dir / "maps.json"));
+  std::filesystem::remove_all(dir);
 }

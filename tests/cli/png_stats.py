@@ -37,11 +37,12 @@ def read_png(path):
         prev = line
     return w, h, bpp, rows
 
-w, h, bpp, rows = read_png(sys.argv[1])
-colours, water = set(), 0
-for line in rows:
-    for x in range(0, w * bpp, bpp):
-        r, g, b = line[x], line[x + 1], line[x + 2]
-        colours.add((r, g, b))
-        water += b > r + 10 and r < 160
-print(w, h, len(colours), water)
+if __name__ == "__main__":  # importable for read_png
+    w, h, bpp, rows = read_png(sys.argv[1])
+    colours, water = set(), 0
+    for line in rows:
+        for x in range(0, w * bpp, bpp):
+            r, g, b = line[x], line[x + 1], line[x + 2]
+            colours.add((r, g, b))
+            water += b > r + 10 and r < 160
+    print(w, h, len(colours), water)

@@ -31,12 +31,12 @@ expect "'erosion.morphological_factor': 0.5 is outside the valid range [1, 1e+06
 expect "--threads" run dambreak --headless --steps 5 --threads 0 --out "$tmp/e"
 expect "--steps" run dambreak --headless --steps abc --out "$tmp/f"
 expect "one of --steps, --time or --wall-time is required" run dambreak --headless --out "$tmp/g"
-expect "--maps: no map called 'wera' (there is wear, deposition, sediment, or all, or none)" run valley --steps 2 --maps wear,wera --out "$tmp/g"
+expect "--maps: no map called 'wera' (there is wear, deposition, sediment, flow, wetness, shear_peak, shear_mean, flow_direction, or all, or none)" run valley --steps 2 --maps wear,wera --out "$tmp/g"
 inputs=$(mktemp -d)
 printf 'not a checkpoint' > "$inputs/bad.ckpt"
 expect "$inputs/bad.ckpt: not a Scour checkpoint (no SCOURCKP header)" export "$inputs/bad.ckpt" --out "$tmp/g"
-expect "--format: expected png16, r16 or exr, found 'tiff'" export "$inputs/bad.ckpt" --format tiff --out "$tmp/g"
-expect "--maps: no map called 'flow'" export "$inputs/bad.ckpt" --maps flow --out "$tmp/g"
+expect "--format: expected png16, r16, exr or geotiff, found 'tiff'" export "$inputs/bad.ckpt" --format tiff --out "$tmp/g"
+expect "--maps: no map called 'flux'" export "$inputs/bad.ckpt" --maps flux --out "$tmp/g"
 expect "--out" run dambreak --headless --steps 5
 expect "did you mean 'fluid.viscosity'" run dambreak --headless --steps 5 --set fluid.viscosty=1 --out "$tmp/h"
 expect "outside the valid range" run dambreak --headless --steps 5 --set fluid.spacing=-1 --out "$tmp/i"

@@ -23,6 +23,28 @@ for s in 000000 000005 000010; do [ -f "$tmp/run/frame_$s.png" ] || { echo "fram
 "$scour" render "$tmp/run/checkpoint_000010.ckpt" --size 64x48 --out "$tmp/ck.png" | grep -q "rendered step 10" \
   || { echo "render of a checkpoint failed"; exit 1; }
 echo "run --frames and render of a checkpoint: ok"
+# The erosion maps as terrain colours (issue 17): the lake's bed, wet all along, in the ramp's
+# yellow; the flow direction by hue; the dry shore dark, not the erosion picture's white.
+for t in erosion wetness flow_direction; do
+  "$scour" render "$tmp/run/checkpoint_000010.ckpt" --size 96x64 --no-water --no-caustics --terrain $t \
+    --out "$tmp/map_$t.png" >/dev/null
+done
+python3 - "$tmp" "$(dirname "$0")" <<'PY'
+import sys
+sys.path.insert(0, sys.argv[2])
+from png_stats import read_png
+d = sys.argv[1]
+def pixels(name):
+    w, h, bpp, rows = read_png(f"{d}/map_{name}.png")
+    return [tuple(r[i * bpp:i * bpp + 3]) for r in rows for i in range(w)]
+ero, wet, dirn = pixels("erosion"), pixels("wetness"), pixels("flow_direction")
+yellow = sum(1 for r, g, b in wet if r > 150 and g > 140 and b < 90)
+assert yellow > 50, yellow
+assert sum(1 for a, b in zip(ero, wet) if a != b) > len(ero) // 4
+hues = {(r > 128, g > 128, b > 128) for r, g, b in dirn if max(r, g, b) - min(r, g, b) > 100}
+assert len(hues) >= 2, hues
+print("render --terrain wetness / flow_direction: %d yellow pixels, %d hues" % (yellow, len(hues)))
+PY
 # A time-lapse: a picture every 4 steps and one of the last step, numbered in order, the clocks
 # of each in timelapse.csv, and an H.264 video of exactly those pictures (ffmpeg, from setup).
 "$scour" run lake --scale 0.05 --steps 10 --timelapse 4 --size 64x48 --out "$tmp/lapse" >/dev/null
@@ -76,7 +98,7 @@ check() {
 }
 check "--size: expected WxH" render lake --size 12x9000 --out "$tmp/x.png"
 check "--gl: unknown GL backend 'vulkan'" render lake --gl vulkan --out "$tmp/x.png"
-check "--terrain: expected erosion, shaded or sediment" render lake --terrain pink --out "$tmp/x.png"
+check "--terrain: expected erosion, shaded, sediment or an erosion map (wear, deposition, sediment, flow, wetness, shear_peak, shear_mean, flow_direction), found 'pink'" render lake --terrain pink --out "$tmp/x.png"
 check "--out: expected a .png file name" render lake --out "$tmp/x.jpg"
 check "--size: expected WxH" run lake --steps 2 --frames 1 --size big --out "$tmp/never"
 check "--timelapse: expected a step count (250) or seconds of bed time (0.5s), each > 0, found '1.5'" run lake --steps 2 --timelapse 1.5 --out "$tmp/never"

@@ -65,19 +65,24 @@ assert s["invariants"]["nan"] == 0 and s["invariants"]["escaped"] == 0
 print("default scene carves %.1f cm" % (100 * t["max_erosion_m"]))
 PY
 # Erosion maps (issue 17): run --maps writes them at the end; scour export writes the same maps
-# and heights from the run's checkpoint (to the byte), and heights as Unreal's .r16.
+# (the flow record's included) and heights from the run's checkpoint (to the byte), and heights
+# as Unreal's .r16.
 "$scour" run valley --scale 0.3 --steps 200 --maps all --checkpoint-every 200 --out "$tmp/maps" \
   --set erosion.morphological_factor=20 --set erosion.morphological_spinup=0.02 >/dev/null
 "$scour" export "$tmp/maps/checkpoint_000200.ckpt" --out "$tmp/exp" >/dev/null
 "$scour" export "$tmp/maps/checkpoint_000200.ckpt" --out "$tmp/exp16" --format r16 --maps wear,sediment >/dev/null
-for f in wear deposition sediment; do cmp "$tmp/maps/maps/$f.png" "$tmp/exp/maps/$f.png"; done
+# The flow maps too: the checkpoint carries the flow record.
+for f in wear deposition sediment flow wetness shear_peak shear_mean flow_direction; do
+  cmp "$tmp/maps/maps/$f.png" "$tmp/exp/maps/$f.png"
+done
 cmp "$tmp/maps/height.png" "$tmp/exp/height.png" && cmp "$tmp/maps/height.r32" "$tmp/exp16/height.r32"
 python3 - "$tmp" <<'PY'
 import json, os, struct, sys
 d = sys.argv[1]
 s = json.load(open(os.path.join(d, "maps", "summary.json")))
 m = s["exports"]["maps"]
-assert sorted(m) == ["deposition", "sediment", "wear"], m
+assert sorted(m) == sorted(["wear", "deposition", "sediment", "flow", "wetness", "shear_peak", "shear_mean", "flow_direction"]), m
+assert m["wetness"]["white"] == 1.0 and m["flow"]["white"] > 0 and m["shear_peak"]["unit"] == "Pa", m
 # White in the wear map is the deepest cut summary.json reports.
 assert m["wear"]["white"] == s["terrain_change"]["max_erosion_m"], (m["wear"], s["terrain_change"])
 assert m["deposition"]["white"] == s["terrain_change"]["max_deposition_m"]

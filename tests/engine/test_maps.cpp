@@ -5,8 +5,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <sstream>
 
+#include <omp.h>
+
+#include "engine/flow_record.h"
 #include "engine/maps.h"
+#include "engine/world.h"
 #include "engine/sediment.h"
 #include "scene/presets.h"
 
@@ -20,7 +25,7 @@ TEST_CASE("the erosion maps sum to the ledger's volumes", "[maps][budget]") {
   World w(buildScene(spec).desc);
   for (int k = 0; k < 250; ++k) w.step();
   const std::vector<TerrainMap> maps = erosionMaps(w);
-  REQUIRE(maps.size() == 3);
+  REQUIRE(maps.size() == 8);
   CHECK(maps[0].name == "wear");
   CHECK(maps[1].name == "deposition");
   CHECK(maps[2].name == "sediment");
@@ -63,4 +68,116 @@ TEST_CASE("the erosion maps sum to the ledger's volumes", "[maps][budget]") {
   double peak = 0;
   for (double v : maps[0].values) peak = std::max(peak, v);
   CHECK(peak == change.max_erosion);
+}
+
+TEST_CASE("the flow record shares each near-bed particle's flux over its footprint", "[maps]") {
+  // A 5 × 5 grid of 0.1 m cells; Δs = 0.25 m covers the vertices within 0.125 m of the particle.
+  Heightfield hf(5, 5, 0.1, 0.1);
+  const std::vector<double> area = vertexAreas(hf);
+  Fluid f;
+  f.push(Vec3f(0.2f, 0.05f, 0.2f), Vec3f(2.0f, 0.0f, -1.0f), 0, 1000.0f);  // near the bed
+  f.push(Vec3f(0.4f, 0.05f, 0.0f), Vec3f(5.0f, 0.0f, 0.0f), 1, 1000.0f);   // not (τ < 0)
+  const std::vector<float> tau = {3.0f, -1.0f};
+  FlowRecord r;
+  r.record(hf, area, f, tau, 1e-3, 0.25, 0.5);
+  r.record(hf, area, f, {1.0f, -1.0f}, 1e-3, 0.25, 1.5);
+  CHECK(r.time() == 2.0);
+  const std::vector<double> wet = r.wetTime(), qx = r.flowX(), qz = r.flowZ(), flow = r.flow();
+  const std::vector<double> peak = r.shearPeak(), shear = r.shearIntegral();
+  double sx = 0, sz = 0;
+  for (int k = 0; k < 5; ++k)
+    for (int i = 0; i < 5; ++i) {
+      const size_t v = size_t(k) * 5 + size_t(i);
+      const bool covered = i >= 1 && i <= 3 && k >= 1 && k <= 3;
+      CHECK(wet[v] == (covered ? 2.0 : 0.0));
+      CHECK(peak[v] == (covered ? 3.0 : 0.0));
+      CHECK(shear[v] == Approx(covered ? 3.0 * 0.5 + 1.0 * 1.5 : 0.0));
+      CHECK(flow[v] == Approx(std::hypot(qx[v], qz[v])));
+      sx += qx[v] * area[v], sz += qz[v] * area[v];
+    }
+  // Σ q A over the run is the particle's V v over the bed time.
+  CHECK(sx == Approx(1e-3 * 2.0 * 2.0).epsilon(1e-12));
+  CHECK(sz == Approx(1e-3 * -1.0 * 2.0).epsilon(1e-12));
+  // Only the tile the water touched holds memory.
+  CHECK(r.tiles().size() == 1);
+}
+
+TEST_CASE("the flow maps: wetness in [0, 1], dry vertices without flow or shear", "[maps]") {
+  SceneSpec spec = presetSpec("valley", 0.3);
+  spec.params.morphological_factor = 20;
+  spec.params.morphological_spinup = 0.02;
+  World w(buildScene(spec).desc);
+  for (int k = 0; k < 150; ++k) w.step();
+  const std::vector<TerrainMap> maps = erosionMaps(w);
+  auto map = [&](const std::string& name) -> const TerrainMap& {
+    return *std::find_if(maps.begin(), maps.end(), [&](const TerrainMap& m) { return m.name == name; });
+  };
+  const TerrainMap &flow = map("flow"), &wet = map("wetness"), &peak = map("shear_peak"), &mean = map("shear_mean"),
+                   &dir = map("flow_direction");
+  REQUIRE(dir.second.size() == dir.values.size());
+  size_t wetCount = 0, alwaysWet = 0;
+  for (size_t v = 0; v < wet.values.size(); ++v) {
+    REQUIRE(wet.values[v] >= 0.0);
+    REQUIRE(wet.values[v] <= 1.0);
+    if (wet.values[v] == 0.0) {
+      CHECK(flow.values[v] == 0.0);
+      CHECK(peak.values[v] == 0.0);
+      CHECK(mean.values[v] == 0.0);
+      CHECK((dir.values[v] == 0.0 && dir.second[v] == 0.0));
+      continue;
+    }
+    ++wetCount;
+    alwaysWet += wet.values[v] == 1.0;
+    CHECK(mean.values[v] <= peak.values[v] * (1 + 1e-12));
+    const double len = std::hypot(dir.values[v], dir.second[v]);
+    CHECK((len == 0.0 || std::abs(len - 1.0) < 1e-12));
+  }
+  // The river: wet along its bed, dry on the valley's sides, and flowing downhill (the valley
+  // falls along +x) on the whole.
+  CHECK(wetCount > 100);
+  CHECK(alwaysWet > 0);
+  CHECK(wetCount < wet.values.size() / 2);
+  double down = 0;
+  for (size_t v = 0; v < wet.values.size(); ++v) down += flow.values[v] * dir.values[v];
+  CHECK(down > 0);
+  CHECK(w.flowRecord().time() == Approx(w.morphologicalTime()).epsilon(1e-12));
+}
+
+TEST_CASE("the flow record: the same at 1 and 2 threads, through a saved state", "[maps][determinism]") {
+  SceneSpec spec = presetSpec("valley", 0.3);
+  spec.params.morphological_factor = 20;
+  spec.params.morphological_spinup = 0.02;
+  auto run = [&](int threads, bool viaState) {
+    omp_set_num_threads(threads);
+    World w(buildScene(spec).desc);
+    for (int k = 0; k < 60; ++k) w.step();
+    if (viaState) {
+      std::stringstream s;
+      w.saveState(s);
+      World again(buildScene(spec).desc);
+      again.loadState(s);
+      for (int k = 0; k < 40; ++k) again.step();
+      return again.flowRecord().values();
+    }
+    for (int k = 0; k < 40; ++k) w.step();
+    return w.flowRecord().values();
+  };
+  const std::vector<double> one = run(1, false), two = run(2, false), resumed = run(2, true);
+  omp_set_num_threads(2);
+  REQUIRE(!one.empty());
+  CHECK(one == two);
+  CHECK(one == resumed);
+}
+
+TEST_CASE("a corrupt flow record in a state is refused", "[maps]") {
+  FlowRecord r;
+  r.reset(40, 40);
+  const size_t perTile = 6 * FlowRecord::kTile * FlowRecord::kTile;
+  CHECK_THROWS_WITH(r.restore(40, 40, 1.0, {9}, std::vector<double>(perTile, 0.0)), "state is corrupt (flow maps)");
+  CHECK_THROWS_WITH(r.restore(40, 40, 1.0, {1, 1}, std::vector<double>(2 * perTile, 0.0)), "state is corrupt (flow maps)");
+  CHECK_THROWS_WITH(r.restore(40, 40, 1.0, {1}, std::vector<double>(perTile, -1.0)), "state is corrupt (flow maps)");
+  CHECK_THROWS_WITH(r.restore(40, 40, -1.0, {}, {}), "state is corrupt (flow maps)");
+  r.restore(40, 40, 2.0, {3}, std::vector<double>(perTile, 0.25));
+  CHECK(r.time() == 2.0);
+  CHECK(r.tiles() == std::vector<int>{3});
 }

@@ -1,0 +1,111 @@
+#!/usr/bin/env bash
+# Elevation data in and out through GDAL (issue 17, docs/exports.md): a georeferenced GeoTIFF DEM
+# with NoData holes runs with erosion, and `scour export --format geotiff` writes heights that
+# GDAL reads back with the input's georeference and the run's eroded heights; an ASCII grid reads
+# too; a file GDAL cannot read is refused with exit 2 and GDAL's reason.
+set -euo pipefail
+scour="$1"
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+# A 61 × 31 DEM, 30 m pixels in UTM zone 12N, a valley falling along x, NoData (−32768) holes.
+python3 - "$tmp/dem.asc" <<'PY'
+import sys
+w, h = 61, 31
+rows = []
+for r in range(h):
+    row = []
+    for c in range(w):
+        z = 2000.0 - 5.0 * c + 0.08 * (r - 15) ** 2
+        hole = (10 <= c <= 12 and 8 <= r <= 10) or (c, r) == (40, 20)
+        row.append("-32768" if hole else f"{z:.3f}")
+    rows.append(" ".join(row))
+head = f"ncols {w}\nnrows {h}\nxllcorner 500000\nyllcorner 4100000\ncellsize 30\nNODATA_value -32768\n"
+open(sys.argv[1], "w").write(head + "\n".join(rows) + "\n")
+PY
+gdal_translate -q -of GTiff -a_srs EPSG:32612 "$tmp/dem.asc" "$tmp/dem.tif"
+cat > "$tmp/scene.json" <<'JSON'
+{
+  "version": 1,
+  "name": "dem",
+  "terrain": {"kind": "heightmap", "file": "dem.tif", "length_x": 3.0, "length_z": 1.5, "cell": 0.05,
+              "height_min": 0.0, "height_max": 0.6},
+  "params": {"fluid": {"sound_speed": 30.0}, "erosion": {"k_eps": 0.1, "tau_c": 0.1}},
+  "effects": ["fluid_motion", "no_slip", "settling", "diffusion", "deposition", "erosion", "sources"],
+  "sources": [{"position": [0.2, 0.75, 0.75], "radius": 0.08, "direction": [1.0, -0.5, 0.0], "rate": 0.02}]
+}
+JSON
+"$scour" run "$tmp/scene.json" --headless --steps 600 --checkpoint-every 600 --threads 2 --out "$tmp/run" >/dev/null
+"$scour" export "$tmp/run/checkpoint_000600.ckpt" --out "$tmp/geo" --format geotiff >/dev/null
+gdalinfo -json "$tmp/dem.tif" > "$tmp/in.json"
+gdalinfo -json -stats "$tmp/geo/height.tif" > "$tmp/out.json"
+python3 - "$tmp" <<'PY'
+import json, struct, sys, os
+d = sys.argv[1]
+src, out = json.load(open(f"{d}/in.json")), json.load(open(f"{d}/out.json"))
+# The same georeference: one output pixel per input pixel (61 × 31 vertices), same corners, same CRS.
+assert out["size"] == [61, 31], out["size"]
+assert out["geoTransform"] == src["geoTransform"], (out["geoTransform"], src["geoTransform"])
+assert "32612" in out["coordinateSystem"]["wkt"].split("ID[")[-1] or 'AUTHORITY["EPSG","32612"]' in out["coordinateSystem"]["wkt"]
+assert out["coordinateSystem"]["wkt"] == src["coordinateSystem"]["wkt"]
+band = out["bands"][0]
+assert band["type"] == "Float32" and band.get("unit") == "m", band
+# The eroded heights: the export's raw floats are the run's settled heights, and the GeoTIFF
+# holds the same (its statistics against the raw ones).
+raw = open(f"{d}/geo/height.r32", "rb").read()
+h = struct.unpack(f"<{61 * 31}f", raw)
+stats = band["metadata"][""] if "metadata" in band and "" in band["metadata"] else {}
+lo, hi = min(h), max(h)
+assert abs(float(stats["STATISTICS_MINIMUM"]) - lo) < 1e-6 and abs(float(stats["STATISTICS_MAXIMUM"]) - hi) < 1e-6, (stats, lo, hi)
+run = json.load(open(f"{d}/run/summary.json"))
+assert run["terrain_change"]["eroded_m3"] > 0, run["terrain_change"]
+exp = json.load(open(f"{d}/geo/export.json"))
+assert exp["heights"]["georeference"]["geotransform"] == src["geoTransform"]
+# NoData filled: no −32768 and nothing outside the DEM's own range (scaled to 0 … 0.6 m),
+# beyond what erosion moved.
+assert lo > -0.05 and hi < 0.65, (lo, hi)
+PY
+# The maps as GeoTIFF too: one band each, two for the flow direction, the same georeference.
+gdalinfo -json "$tmp/geo/maps/flow_direction.tif" | python3 -c "
+import json, sys; j = json.load(sys.stdin); assert len(j['bands']) == 2, j['bands']"
+gdalinfo -json "$tmp/geo/maps/wetness.tif" > "$tmp/wet.json"
+python3 -c "
+import json, sys; a = json.load(open('$tmp/wet.json')); b = json.load(open('$tmp/in.json'))
+assert a['geoTransform'] == b['geoTransform'] and len(a['bands']) == 1"
+# An ASCII grid reads directly (holes filled), with the heights as they are (lowered by base).
+cat > "$tmp/asc.json" <<'JSON'
+{"version": 1, "name": "asc",
+ "terrain": {"kind": "heightmap", "file": "dem.asc", "length_x": 3.0, "length_z": 1.5, "cell": 0.05,
+             "heights": "metres", "base": -1700.0},
+ "effects": ["fluid_motion"]}
+JSON
+"$scour" run "$tmp/asc.json" --headless --steps 1 --threads 2 --out "$tmp/asc" >/dev/null
+python3 - "$tmp/asc/height.r32" <<'PY'
+import struct, sys
+h = struct.unpack(f"<{61 * 31}f", open(sys.argv[1], "rb").read())
+assert min(h) > -10 and max(h) < 320, (min(h), max(h))
+# Row 0 of the grid is the file's first row: 2000 − 5c + 0.08 · 15² − 1700.
+assert abs(h[0] - 318.0) < 1e-3 and abs(h[60] - 18.0) < 1e-3, (h[0], h[60])
+# The hole at column 40, row 20 is filled from around it (2000 − 200 + 0.08 · 25 − 1700 = 102).
+assert abs(h[20 * 61 + 40] - 102.0) < 3.0, h[20 * 61 + 40]  # between its neighbours (97 … 107)
+PY
+# A file GDAL cannot read: exit 2, GDAL's reason, the field named.
+printf 'not a tiff' > "$tmp/bad.tif"
+sed -e 's/"file": "dem.tif"/"file": "bad.tif"/' "$tmp/scene.json" > "$tmp/bad.json"
+set +e
+msg=$("$scour" run "$tmp/bad.json" --headless --steps 1 --out "$tmp/bad" 2>&1)
+rc=$?
+set -e
+[ "$rc" -eq 2 ] || { echo "expected exit 2, got $rc: $msg"; exit 1; }
+echo "$msg" | grep -q "bad.tif: GDAL cannot read it as elevation data (" || { echo "unexpected message: $msg"; exit 1; }
+[ ! -e "$tmp/bad/summary.json" ]
+# Every pixel NoData: refused.
+python3 -c "
+open('$tmp/empty.asc','w').write('ncols 3\nnrows 3\nxllcorner 0\nyllcorner 0\ncellsize 1\nNODATA_value -9999\n' + '-9999 -9999 -9999\n' * 3)"
+sed -e 's/"file": "dem.tif"/"file": "empty.asc"/' "$tmp/scene.json" > "$tmp/empty.json"
+set +e
+msg=$("$scour" run "$tmp/empty.json" --headless --steps 1 --out "$tmp/empty" 2>&1)
+rc=$?
+set -e
+[ "$rc" -eq 2 ] || { echo "expected exit 2, got $rc: $msg"; exit 1; }
+echo "$msg" | grep -q "empty.asc: holds no data (every pixel is NoData" || { echo "unexpected message: $msg"; exit 1; }
+echo "geodata: ok"
