@@ -14,8 +14,7 @@ void FlowRecord::reset(int nx, int nz) {
   nx_ = nx, nz_ = nz, tilesX_ = (nx + kTile - 1) / kTile;
   time_ = 0;
   slot_.assign(size_t(tilesX_) * size_t((nz + kTile - 1) / kTile), -1);
-  tiles_.clear(), values_.clear(), touched_.clear(), mark_.clear();
-  stepQx_.clear(), stepQz_.clear(), stepTau_.clear();
+  tiles_.clear(), values_.clear(), touched_.clear(), step_.clear();
 }
 
 size_t FlowRecord::slotOf(int v) {
@@ -25,8 +24,7 @@ size_t FlowRecord::slotOf(int v) {
     slot_[tile] = int32_t(tiles_.size());
     tiles_.push_back(int(tile));
     values_.resize(values_.size() + size_t(kFields) * kTileVertices, 0.0);
-    mark_.resize(mark_.size() + kTileVertices, 0);
-    stepQx_.resize(mark_.size(), 0.0), stepQz_.resize(mark_.size(), 0.0), stepTau_.resize(mark_.size(), 0.0);
+    step_.resize(step_.size() + kTileVertices);
   }
   return size_t(slot_[tile]);
 }
@@ -34,44 +32,47 @@ size_t FlowRecord::slotOf(int v) {
 void FlowRecord::record(const Heightfield& hf, const std::vector<double>& vertexArea, const Fluid& f,
                         const std::vector<float>& tau, double volume, double spacing, double dtm) {
   if (nx_ != hf.nx() || nz_ != hf.nz()) reset(hf.nx(), hf.nz());
-  const double half = 0.5 * spacing;
-  auto local = [&](int v) { return (v / nx_ % kTile) * kTile + v % nx_ % kTile; };
+  const double half = 0.5 * spacing, invDx = 1.0 / hf.dx(), invDz = 1.0 / hf.dz();
   for (size_t p = 0; p < f.size(); ++p) {
     if (!(tau[p] >= 0.0f)) continue;
     const double x = double(f.x[p].x()) - hf.x0(), z = double(f.x[p].z()) - hf.z0();
     // The footprint's vertices; the nearest one when none lies inside it.
-    int i0 = int(std::ceil((x - half) / hf.dx())), i1 = int(std::floor((x + half) / hf.dx()));
-    int k0 = int(std::ceil((z - half) / hf.dz())), k1 = int(std::floor((z + half) / hf.dz()));
+    int i0 = int(std::ceil((x - half) * invDx)), i1 = int(std::floor((x + half) * invDx));
+    int k0 = int(std::ceil((z - half) * invDz)), k1 = int(std::floor((z + half) * invDz));
     i0 = std::max(i0, 0), k0 = std::max(k0, 0), i1 = std::min(i1, nx_ - 1), k1 = std::min(k1, nz_ - 1);
     if (i0 > i1 || k0 > k1) {
-      i0 = i1 = std::clamp(int(std::lround(x / hf.dx())), 0, nx_ - 1);
-      k0 = k1 = std::clamp(int(std::lround(z / hf.dz())), 0, nz_ - 1);
+      i0 = i1 = std::clamp(int(std::lround(x * invDx)), 0, nx_ - 1);
+      k0 = k1 = std::clamp(int(std::lround(z * invDz)), 0, nz_ - 1);
     }
     double area = 0;
     for (int k = k0; k <= k1; ++k)
       for (int i = i0; i <= i1; ++i) area += vertexArea[size_t(k) * size_t(nx_) + size_t(i)];
     const double qx = volume * double(f.v[p].x()) / area, qz = volume * double(f.v[p].z()) / area;
+    const double t = double(tau[p]);
     for (int k = k0; k <= k1; ++k)
       for (int i = i0; i <= i1; ++i) {
-        const int v = k * nx_ + i;
-        const size_t s = slotOf(v) * kTileVertices + size_t(local(v));
-        if (!mark_[s]) mark_[s] = 1, touched_.push_back(v), stepQx_[s] = stepQz_[s] = stepTau_[s] = 0.0;
-        stepQx_[s] += qx, stepQz_[s] += qz;
-        stepTau_[s] = std::max(stepTau_[s], double(tau[p]));
+        // The vertex's place in its tile's slot: no division on the way.
+        const size_t tile = size_t(k / kTile) * size_t(tilesX_) + size_t(i / kTile);
+        if (slot_[tile] < 0) slotOf(k * nx_ + i);
+        const size_t s = size_t(slot_[tile]) * kTileVertices + size_t((k % kTile) * kTile + i % kTile);
+        StepSum& sum = step_[s];
+        if (!sum.listed) sum = {0.0, 0.0, 0.0, 1u}, touched_.push_back(int(s));
+        sum.qx += qx, sum.qz += qz;
+        sum.tau = std::max(sum.tau, t);
       }
   }
-  for (int v : touched_) {
-    const size_t slot = size_t(slot_[size_t(v / nx_ / kTile) * size_t(tilesX_) + size_t(v % nx_ / kTile)]);
-    const size_t s = slot * kTileVertices + size_t(local(v));
-    double* at = values_.data() + slot * kFields * kTileVertices + size_t(local(v));
+  for (int e : touched_) {
+    const size_t s = size_t(e), slot = s / kTileVertices, local = s % kTileVertices;
+    double* at = values_.data() + slot * kFields * kTileVertices + local;
     auto field = [&](Field fl) -> double& { return at[size_t(fl) * kTileVertices]; };
+    StepSum& sum = step_[s];
     field(Field::kWet) += dtm;
-    field(Field::kFlow) += std::hypot(stepQx_[s], stepQz_[s]) * dtm;
-    field(Field::kQx) += stepQx_[s] * dtm;
-    field(Field::kQz) += stepQz_[s] * dtm;
-    field(Field::kShear) += stepTau_[s] * dtm;
-    field(Field::kPeak) = std::max(field(Field::kPeak), stepTau_[s]);
-    mark_[s] = 0;
+    field(Field::kFlow) += std::sqrt(sum.qx * sum.qx + sum.qz * sum.qz) * dtm;
+    field(Field::kQx) += sum.qx * dtm;
+    field(Field::kQz) += sum.qz * dtm;
+    field(Field::kShear) += sum.tau * dtm;
+    field(Field::kPeak) = std::max(field(Field::kPeak), sum.tau);
+    sum.listed = 0;
   }
   touched_.clear();
   time_ += dtm;
@@ -93,8 +94,7 @@ std::vector<double> FlowRecord::dense(Field fl) const {
 
 size_t FlowRecord::bytes() const {
   return slot_.capacity() * sizeof(int32_t) + tiles_.capacity() * sizeof(int) + values_.capacity() * sizeof(double) +
-         touched_.capacity() * sizeof(int) + mark_.capacity() +
-         (stepQx_.capacity() + stepQz_.capacity() + stepTau_.capacity()) * sizeof(double);
+         touched_.capacity() * sizeof(int) + step_.capacity() * sizeof(StepSum);
 }
 
 void FlowRecord::restore(int nx, int nz, double time, std::vector<int> tiles, std::vector<double> values) {
@@ -114,8 +114,7 @@ void FlowRecord::restore(int nx, int nz, double time, std::vector<int> tiles, st
   }
   r.time_ = time;
   r.tiles_ = std::move(tiles), r.values_ = std::move(values);
-  r.mark_.assign(r.tiles_.size() * kTileVertices, 0);
-  r.stepQx_.assign(r.mark_.size(), 0.0), r.stepQz_ = r.stepQx_, r.stepTau_ = r.stepQx_;
+  r.step_.assign(r.tiles_.size() * kTileVertices, StepSum{});
   *this = std::move(r);
 }
 

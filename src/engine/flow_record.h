@@ -73,9 +73,13 @@ class FlowRecord {
   std::vector<int> tiles_;      ///< per slot: its tile
   std::vector<double> values_;  ///< per slot, kFields × kTile² values (field-major)
   // This step's sums, per touched vertex.
-  std::vector<int> touched_;
-  std::vector<uint8_t> mark_;   ///< per slot × kTile²: 1 when in touched_
-  std::vector<double> stepQx_, stepQz_, stepTau_;
+  std::vector<int> touched_;    ///< slot × kTile² + place in the tile
+  /// Per slot × kTile²: this step's sums, and 1 when in touched_ (one cache line together).
+  struct StepSum {
+    double qx = 0, qz = 0, tau = 0;
+    uint32_t listed = 0;
+  };
+  std::vector<StepSum> step_;
 };
 
 }  // namespace scour
