@@ -5,7 +5,7 @@ set -euo pipefail
 packages=(
   build-essential cmake ninja-build pkg-config git python3
   libeigen3-dev libcli11-dev nlohmann-json3-dev libnanoflann-dev catch2
-  libpng-dev libstb-dev libopenexr-dev libgdal-dev gdal-bin
+  libpng-dev libstb-dev libopenexr-dev libgdal-dev gdal-bin libtinygltf-dev
   libglfw3-dev libglew-dev libimgui-dev libegl1-mesa-dev libosmesa6-dev libgl1-mesa-dri xvfb xauth
   fonts-dejavu-core xdotool ffmpeg
   clang libclang-rt-14-dev libomp-14-dev

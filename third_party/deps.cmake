@@ -9,6 +9,8 @@ find_package(PNG REQUIRED)
 find_package(OpenEXR 3.1 REQUIRED CONFIG)
 # Elevation data (GeoTIFF, SRTM .hgt, ASCII grid) in and GeoTIFF out (Debian libgdal-dev).
 find_package(GDAL 3.6 REQUIRED CONFIG)
+# The terrain as a glTF mesh (Debian libtinygltf-dev, a shared library there).
+find_package(TinyGLTF 2.7 REQUIRED CONFIG)
 # nanoflann (libnanoflann-dev, header-only): the kd-tree neighbor search, engine.neighbor_search.
 find_package(nanoflann 1.4 REQUIRED)
 

@@ -1,5 +1,6 @@
 // scour export: the heights and the erosion maps of a checkpoint, in the formats an engine takes
 // (docs/exports.md), so a long run is exported once it is done, and again in another format later.
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <map>
@@ -9,6 +10,7 @@
 #include "cli/commands.h"
 #include "engine/maps.h"
 #include "scene/checkpoint.h"
+#include "scene/gltf.h"
 #include "scene/output.h"
 #include "scene/run_outputs.h"
 
@@ -20,7 +22,7 @@ using nlohmann::json;
 namespace {
 
 struct ExportOptions {
-  std::string checkpoint, out, maps = "all", format = "png16", resample;
+  std::string checkpoint, out, maps = "all", format = "png16", resample, mesh = "none";
 };
 
 // "WxH" vertices, each side 2 to 16,385; InputError naming --resample otherwise.
@@ -46,6 +48,8 @@ std::pair<int, int> parseGridSize(const std::string& text) {
 int exportCheckpoint(const ExportOptions& o) {
   if (o.format != "png16" && o.format != "r16" && o.format != "exr" && o.format != "geotiff")
     throw InputError("--format: expected png16, r16, exr or geotiff, found '" + o.format + "'");
+  if (o.mesh != "none" && o.mesh != "gltf" && o.mesh != "obj")
+    throw InputError("--mesh: expected none, gltf or obj, found '" + o.mesh + "'");
   const std::pair<int, int> size = o.resample.empty() ? std::pair<int, int>{0, 0} : parseGridSize(o.resample);
   std::vector<std::string> maps;
   try {
@@ -124,6 +128,20 @@ int exportCheckpoint(const ExportOptions& o) {
     heights["unreal_scale_cm"] = {hf.dx() * 100, hf.dz() * 100, (hi - lo) * 100 / 512};
   }
   writeHeightRaw(dir / "height.r32", hf);
+  json mesh = nullptr;
+  if (o.mesh == "obj") {
+    writeTerrainObj(dir / "terrain.obj", hf);
+    mesh = {{"file", "terrain.obj"}};
+  } else if (o.mesh == "gltf") {
+    // The maps asked for, as per-vertex attributes.
+    std::vector<TerrainMap> chosen;
+    for (const TerrainMap& m : mapValues)
+      if (std::find(maps.begin(), maps.end(), m.name) != maps.end()) chosen.push_back(m);
+    const std::vector<std::string> attributes = writeTerrainGltf(dir / "terrain.glb", hf, chosen);
+    mesh = {{"file", "terrain.glb"},
+            {"attributes", attributes},
+            {"mapping", "binary glTF 2.0, y up, metres; TEXCOORD_0 u = i / (nx - 1), v = k / (nz - 1) (the map images lie on it); each map a per-vertex float attribute in its unit"}};
+  }
   if (size.first > 0) heights["resampled_from"] = {settled.nx(), settled.nz()};
   json summary = {{"checkpoint", o.checkpoint},
                   {"step", world->steps()},
@@ -131,6 +149,7 @@ int exportCheckpoint(const ExportOptions& o) {
                   {"morphological_s", world->morphologicalTime()},
                   {"heights", heights},
                   {"height_r32", "float32 little-endian, nz rows of nx heights [m]"},
+                  {"mesh", mesh},
                   {"maps", maps.empty() ? json(nullptr) : writeErosionMaps(dir / "maps", mapValues, hf.nx(), hf.nz(), maps,
                                                                    o.format == "exr" ? MapFormat::kExr : o.format == "geotiff" ? MapFormat::kGeoTiff : MapFormat::kPng16,
                                                                    &where)}};
@@ -148,6 +167,7 @@ Command addExportCommand(CLI::App& app) {
   c->add_option("checkpoint", o->checkpoint, "A checkpoint (.ckpt) of scour run")->required();
   c->add_option("--out", o->out, "Output directory")->required();
   c->add_option("--maps", o->maps, "Erosion maps: all (default), none, or a list of wear, deposition, sediment, flow, wetness, shear_peak, shear_mean, flow_direction");
+  c->add_option("--mesh", o->mesh, "The terrain as a mesh too: none (default), gltf (terrain.glb, the maps as vertex attributes) or obj");
   c->add_option("--resample", o->resample,
                 "Resample heights and maps to WxH vertices over the same rectangle (Unreal: 1009x1009, 2017x2017, 4033x4033; Unity: 513x513, 1025x1025, 2049x2049)");
   c->add_option("--format", o->format, "Heights (and maps) as png16 (16-bit PNG; default), r16 (Unreal's 16-bit raw heights, PNG maps), exr (float32 OpenEXR) or geotiff (float32 GeoTIFF with the input elevation data's georeference)");

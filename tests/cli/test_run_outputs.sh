@@ -131,6 +131,26 @@ set +e; out=$("$scour" export "$tmp/maps/checkpoint_000200.ckpt" --out "$tmp/map
 [ $rc -eq 2 ] && grep -qF -- "holds a run's outputs (summary.json); export into another folder" <<<"$out" \
   && [ ! -e "$tmp/maps/height.exr" ] || { echo "FAIL: export into a run's folder: $rc: $out"; exit 1; }
 echo "export --resample: ok"
+# The mesh as binary glTF with the maps asked for as vertex attributes.
+"$scour" export "$tmp/maps/checkpoint_000200.ckpt" --out "$tmp/glb" --mesh gltf --maps wear,flow_direction >/dev/null
+python3 - "$tmp/glb" <<'PY'
+import json, struct, sys
+d = sys.argv[1]
+data = open(f"{d}/terrain.glb", "rb").read()
+magic, version, length = struct.unpack("<4sII", data[:12])
+assert magic == b"glTF" and version == 2 and length == len(data), (magic, version, length)
+n, kind = struct.unpack("<I4s", data[12:20])
+gltf = json.loads(data[20:20 + n])
+attrs = gltf["meshes"][0]["primitives"][0]["attributes"]
+assert {"POSITION", "NORMAL", "TEXCOORD_0", "_WEAR", "_FLOW_DIRECTION"} == set(attrs), attrs
+e = json.load(open(f"{d}/export.json"))
+assert e["mesh"]["attributes"] == ["_WEAR", "_FLOW_DIRECTION"], e["mesh"]
+assert gltf["accessors"][attrs["POSITION"]]["count"] == e["heights"]["nx"] * e["heights"]["nz"]
+PY
+set +e; out=$("$scour" export "$tmp/maps/checkpoint_000200.ckpt" --out "$tmp/never" --mesh fbx 2>&1); rc=$?; set -e
+[ $rc -eq 2 ] && grep -qF -- "--mesh: expected none, gltf or obj, found 'fbx'" <<<"$out" && [ ! -e "$tmp/never" ] \
+  || { echo "FAIL: --mesh fbx: $rc: $out"; exit 1; }
+echo "export --mesh gltf: ok"
 # EXR (issue 17): the heights and maps as float32 OpenEXR; a scene whose terrain is that file,
 # its heights kept as metres, has the same heights to the bit (no water: nothing moves them).
 "$scour" export "$tmp/maps/checkpoint_000200.ckpt" --out "$tmp/exr" --format exr >/dev/null

@@ -3,6 +3,7 @@
 // blue; the particle PLY carries C.
 #include <catch2/catch.hpp>
 #include <stb_image.h>
+#include <tiny_gltf.h>
 
 #include <unistd.h>
 
@@ -13,6 +14,7 @@
 
 #include <Eigen/Geometry>
 
+#include "scene/gltf.h"
 #include "scene/output.h"
 
 using namespace scour;
@@ -143,4 +145,56 @@ TEST_CASE("terrain OBJ: vertices, normals and upward faces", "[exports]") {
   }
   CHECK(area == Approx(2.0 * 0.75));  // projected area of the grid
   fs::remove_all(d);
+}
+
+TEST_CASE("terrain glTF: the grid's vertices, upward faces and the maps as attributes, read back by tinygltf", "[exports]") {
+  Heightfield hf(4, 3, 0.5, 0.25, 1.0, -2.0);
+  for (int k = 0; k < 3; ++k)
+    for (int i = 0; i < 4; ++i) hf.at(i, k) = 0.1 * i - 0.05 * k;
+  TerrainMap wear{"wear", "m", "", std::vector<double>(12), {}};
+  TerrainMap dir{"flow_direction", "-", "", std::vector<double>(12, 0.6), std::vector<double>(12, -0.8)};
+  for (size_t v = 0; v < 12; ++v) wear.values[v] = 0.001 * double(v);
+  const fs::path path = tempDir() / "t.glb";
+  CHECK(writeTerrainGltf(path, hf, {wear, dir}) == std::vector<std::string>{"_WEAR", "_FLOW_DIRECTION"});
+  tinygltf::Model m;
+  tinygltf::TinyGLTF loader;
+  std::string err, warn;
+  REQUIRE(loader.LoadBinaryFromFile(&m, &err, &warn, path.string()));
+  REQUIRE(m.meshes.size() == 1);
+  const tinygltf::Primitive& p = m.meshes[0].primitives.at(0);
+  auto floats = [&](const std::string& attribute) {
+    const tinygltf::Accessor& a = m.accessors[size_t(p.attributes.at(attribute))];
+    const tinygltf::BufferView& v = m.bufferViews[size_t(a.bufferView)];
+    const size_t per = a.type == TINYGLTF_TYPE_VEC3 ? 3 : a.type == TINYGLTF_TYPE_VEC2 ? 2 : 1;
+    std::vector<float> out(a.count * per);
+    std::memcpy(out.data(), m.buffers[0].data.data() + v.byteOffset + a.byteOffset, out.size() * sizeof(float));
+    return out;
+  };
+  const std::vector<float> pos = floats("POSITION"), nrm = floats("NORMAL"), uv = floats("TEXCOORD_0");
+  REQUIRE(pos.size() == 36);
+  // Vertex (i, k) = 2 + 4 k … at (x0 + i dx, h, z0 + k dz), u = i / 3, v = k / 2.
+  const size_t v = 2 * 4 + 3;
+  CHECK(pos[3 * v] == Approx(1.0 + 3 * 0.5));
+  CHECK(pos[3 * v + 1] == Approx(0.3 - 0.1));
+  CHECK(pos[3 * v + 2] == Approx(-2.0 + 2 * 0.25));
+  CHECK(uv[2 * v] == Approx(1.0));
+  CHECK(uv[2 * v + 1] == Approx(1.0));
+  for (size_t k = 0; k < 12; ++k) CHECK(nrm[3 * k + 1] > 0.9f);
+  const std::vector<float> w = floats("_WEAR"), d = floats("_FLOW_DIRECTION");
+  REQUIRE(w.size() == 12);
+  CHECK(w[7] == Approx(0.007));
+  REQUIRE(d.size() == 24);
+  CHECK(d[2 * 5] == Approx(0.6));
+  CHECK(d[2 * 5 + 1] == Approx(-0.8));
+  // Two triangles a cell, each counter-clockwise seen from above (its normal points up).
+  const tinygltf::Accessor& ia = m.accessors[size_t(p.indices)];
+  REQUIRE(ia.count == size_t(3 * 2 * 3 * 2));
+  const tinygltf::BufferView& iv = m.bufferViews[size_t(ia.bufferView)];
+  std::vector<uint32_t> idx(ia.count);
+  std::memcpy(idx.data(), m.buffers[0].data.data() + iv.byteOffset + ia.byteOffset, idx.size() * sizeof(uint32_t));
+  for (size_t t = 0; t < idx.size(); t += 3) {
+    auto at = [&](uint32_t q) { return Eigen::Vector3d(pos[3 * q], pos[3 * q + 1], pos[3 * q + 2]); };
+    const Eigen::Vector3d a = at(idx[t]), b = at(idx[t + 1]), c = at(idx[t + 2]);
+    CHECK((b - a).cross(c - a).y() > 0);
+  }
 }
