@@ -246,8 +246,7 @@ void SimulationWorker::apply(SimCommand& c) {
     } else if (auto* ds = std::get_if<cmd::DeleteSnapshot>(&c)) {
       deleteSnapshot(ds->id);
     } else if (auto* sm = std::get_if<cmd::ShowMap>(&c)) {
-      const std::vector<std::string>& names = erosionMapNames();
-      if (!sm->name.empty() && std::find(names.begin(), names.end(), sm->name) == names.end())
+      if (!sm->name.empty() && !isErosionMap(sm->name))
         throw std::invalid_argument("no erosion map called '" + sm->name + "'");
       frameMap_ = sm->name;
     } else if (auto* f = std::get_if<cmd::SetStepsPerFrame>(&c)) {

@@ -76,7 +76,7 @@ int exportCheckpoint(const ExportOptions& o) {
   createOutputDirectory("--out", o.out);
   const fs::path dir(o.out);
   const Heightfield settled = world->settledTerrain();
-  std::vector<TerrainMap> mapValues = maps.empty() ? std::vector<TerrainMap>{} : erosionMaps(*world);
+  std::vector<TerrainMap> mapValues = erosionMaps(*world, maps);
   // --resample: the same rectangle on the engine's grid, heights and maps alike.
   Heightfield hf = settled;
   if (size.first > 0) {
@@ -89,12 +89,8 @@ int exportCheckpoint(const ExportOptions& o) {
       if (!m.second.empty()) m.second = resampleGrid(m.second, nx, nz, size.first, size.second);
     }
     // The same rectangle: vertex (0, 0) stays where it was, the pixels shrink or grow.
-    if (where.valid) {
-      const double sx = double(nx - 1) / (size.first - 1), sz = double(nz - 1) / (size.second - 1);
-      const double cx = 0.5 - 0.5 * sx, cz = 0.5 - 0.5 * sz;
-      const auto g = where.transform;
-      where.transform = {g[0] + g[1] * cx + g[2] * cz, g[1] * sx, g[2] * sz, g[3] + g[4] * cx + g[5] * cz, g[4] * sx, g[5] * sz};
-    }
+    if (where.valid)
+      where = resampledGeoreference(where, 0, 0, double(nx - 1) / (size.first - 1), double(nz - 1) / (size.second - 1));
   }
   const bool georeferenced = where.valid;
   if (o.format == "geotiff" && !where.valid) where = localGeoreference(hf.x0(), hf.z0(), hf.dx(), hf.dz());
@@ -134,10 +130,7 @@ int exportCheckpoint(const ExportOptions& o) {
     mesh = {{"file", "terrain.obj"}};
   } else if (o.mesh == "gltf") {
     // The maps asked for, as per-vertex attributes.
-    std::vector<TerrainMap> chosen;
-    for (const TerrainMap& m : mapValues)
-      if (std::find(maps.begin(), maps.end(), m.name) != maps.end()) chosen.push_back(m);
-    const std::vector<std::string> attributes = writeTerrainGltf(dir / "terrain.glb", hf, chosen);
+    const std::vector<std::string> attributes = writeTerrainGltf(dir / "terrain.glb", hf, mapValues);
     mesh = {{"file", "terrain.glb"},
             {"attributes", attributes},
             {"mapping", "binary glTF 2.0, y up, metres; TEXCOORD_0 u = i / (nx - 1), v = k / (nz - 1) (the map images lie on it); each map a per-vertex float attribute in its unit"}};

@@ -27,10 +27,9 @@ RenderSettings::Terrain parseTerrain(const std::string& text) {
   if (text == "erosion") return RenderSettings::Terrain::kErosion;
   if (text == "shaded") return RenderSettings::Terrain::kShaded;
   if (text == "sediment") return RenderSettings::Terrain::kSediment;
-  const std::vector<std::string>& maps = erosionMapNames();
-  if (std::find(maps.begin(), maps.end(), text) != maps.end()) return RenderSettings::Terrain::kMap;
+  if (isErosionMap(text)) return RenderSettings::Terrain::kMap;
   std::string list;
-  for (const std::string& m : maps) list += ", " + m;
+  for (const std::string& m : erosionMapNames()) list += ", " + m;
   throw InputError("--terrain: expected erosion, shaded, sediment or an erosion map (" + list.substr(2) + "), found '" + text + "'");
 }
 

@@ -17,9 +17,7 @@ void FlowRecord::reset(int nx, int nz) {
   tiles_.clear(), values_.clear(), touched_.clear(), step_.clear();
 }
 
-size_t FlowRecord::slotOf(int v) {
-  const int i = v % nx_, k = v / nx_;
-  const size_t tile = size_t(k / kTile) * size_t(tilesX_) + size_t(i / kTile);
+size_t FlowRecord::slotOf(size_t tile) {
   if (slot_[tile] < 0) {
     slot_[tile] = int32_t(tiles_.size());
     tiles_.push_back(int(tile));
@@ -53,8 +51,7 @@ void FlowRecord::record(const Heightfield& hf, const std::vector<double>& vertex
       for (int i = i0; i <= i1; ++i) {
         // The vertex's place in its tile's slot: no division on the way.
         const size_t tile = size_t(k / kTile) * size_t(tilesX_) + size_t(i / kTile);
-        if (slot_[tile] < 0) slotOf(k * nx_ + i);
-        const size_t s = size_t(slot_[tile]) * kTileVertices + size_t((k % kTile) * kTile + i % kTile);
+        const size_t s = slotOf(tile) * kTileVertices + size_t((k % kTile) * kTile + i % kTile);
         StepSum& sum = step_[s];
         if (!sum.listed) sum = {0.0, 0.0, 0.0, 1u}, touched_.push_back(int(s));
         sum.qx += qx, sum.qz += qz;

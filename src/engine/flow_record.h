@@ -2,7 +2,7 @@
 // What the water did over each terrain vertex during a run (issue 17, docs/exports.md): the
 // near-bed flow, how long the vertex was wet, the bed shear stress. Accumulated every step while
 // erosion or deposition is on, on the bed's (morphological) clock, and kept in the world state,
-// so a checkpoint or a snapshot carries it and the maps of flowMaps() cover the whole run.
+// so a checkpoint or a snapshot carries it and erosionMaps()' flow maps cover the whole run.
 //
 // A fluid particle is near the bed when it has a boundary neighbor (it lies within h of the
 // terrain: the erosion's own neighborhood). Each near-bed particle i covers the vertices of the
@@ -24,10 +24,8 @@
 #include <cstdint>
 #include <vector>
 
-#include "engine/boundary.h"
 #include "engine/fluid.h"
 #include "engine/heightfield.h"
-#include "engine/neighbors.h"
 
 namespace scour {
 
@@ -64,8 +62,8 @@ class FlowRecord {
   enum class Field { kWet, kFlow, kQx, kQz, kShear, kPeak, kCount };
   static constexpr int kFields = int(Field::kCount);
   std::vector<double> dense(Field f) const;
-  /// The slot of vertex v's tile, made when absent.
-  size_t slotOf(int v);
+  /// The slot of a tile, made when absent.
+  size_t slotOf(size_t tile);
 
   int nx_ = 0, nz_ = 0, tilesX_ = 0;
   double time_ = 0;

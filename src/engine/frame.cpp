@@ -3,8 +3,6 @@
 #include "engine/maps.h"
 #include "engine/world.h"
 
-#include <stdexcept>
-
 namespace scour {
 
 Frame makeFrame(const World& w, const std::string& map) {
@@ -32,14 +30,11 @@ Frame makeFrame(const World& w, const std::string& map) {
   f.change.resize(h0.size());
   for (size_t i = 0; i < h0.size(); ++i) f.change[i] = float(hf.heights()[i] - h0[i]);
   if (map.empty()) return f;
-  for (TerrainMap& m : erosionMaps(w))
-    if (m.name == map) {
-      f.mapName = m.name;
-      f.map.assign(m.values.begin(), m.values.end());
-      f.map2.assign(m.second.begin(), m.second.end());
-      return f;
-    }
-  throw std::invalid_argument("no erosion map called '" + map + "'");
+  const TerrainMap m = erosionMap(w, map);
+  f.mapName = m.name;
+  f.map.assign(m.values.begin(), m.values.end());
+  f.map2.assign(m.second.begin(), m.second.end());
+  return f;
 }
 
 }  // namespace scour

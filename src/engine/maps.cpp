@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 
 #include "engine/world.h"
 
@@ -39,37 +40,54 @@ std::vector<double> suspendedAtVertices(const World& w) {
 
 }  // namespace
 
-std::vector<TerrainMap> erosionMaps(const World& w) {
-  const std::vector<double> dh = w.heightChange();
-  const std::vector<double>& area = w.vertexArea();
-  TerrainMap wear{"wear", "m", "depth eroded since the start (the settled terrain)", {}, {}};
-  TerrainMap deposition{"deposition", "m", "depth deposited since the start (the settled terrain)", {}, {}};
-  TerrainMap sediment{"sediment", "m", "sediment suspended in the water above, as a depth of soil, now", {}, {}};
-  wear.values.resize(dh.size()), deposition.values.resize(dh.size());
-  for (size_t v = 0; v < dh.size(); ++v) {
-    wear.values[v] = std::max(0.0, -dh[v]);
-    deposition.values[v] = std::max(0.0, dh[v]);
+bool isErosionMap(const std::string& name) {
+  const std::vector<std::string>& names = erosionMapNames();
+  return std::find(names.begin(), names.end(), name) != names.end();
+}
+
+TerrainMap erosionMap(const World& w, const std::string& name) {
+  if (name == "wear" || name == "deposition") {
+    const bool worn = name == "wear";
+    TerrainMap m{name, "m", std::string(worn ? "depth eroded" : "depth deposited") + " since the start (the settled terrain)", w.heightChange(), {}};
+    for (double& dh : m.values) dh = std::max(0.0, worn ? -dh : dh);
+    return m;
   }
-  sediment.values = suspendedAtVertices(w);
-  for (size_t v = 0; v < area.size(); ++v) sediment.values[v] /= area[v];
+  if (name == "sediment") {
+    TerrainMap m{name, "m", "sediment suspended in the water above, as a depth of soil, now", suspendedAtVertices(w), {}};
+    const std::vector<double>& area = w.vertexArea();
+    for (size_t v = 0; v < area.size(); ++v) m.values[v] /= area[v];
+    return m;
+  }
   // What the flow record holds (flow_record.h), over the bed time it covers.
   const FlowRecord& r = w.flowRecord();
-  TerrainMap flow{"flow", "m³/m", "near-bed water that passed over, per unit width, over the run", r.flow(), {}};
-  TerrainMap wetness{"wetness", "-", "fraction of the run's bed time with water within h above", r.wetTime(), {}};
-  TerrainMap peak{"shear_peak", "Pa", "largest bed shear stress τ of eq. (9) over the run", r.shearPeak(), {}};
-  TerrainMap mean{"shear_mean", "Pa", "mean bed shear stress τ over the time it was wet", r.shearIntegral(), {}};
-  TerrainMap direction{"flow_direction", "-", "mean near-bed flow direction over the run, a unit vector (x, z)", r.flowX(), {}};
-  direction.second = r.flowZ();
-  for (size_t v = 0; v < dh.size(); ++v) {
-    const double wet = wetness.values[v];
-    wetness.values[v] = r.time() > 0 ? wet / r.time() : 0.0;
-    mean.values[v] = wet > 0 ? mean.values[v] / wet : 0.0;
-    const double len = std::hypot(direction.values[v], direction.second[v]);
-    direction.values[v] = len > 0 ? direction.values[v] / len : 0.0;
-    direction.second[v] = len > 0 ? direction.second[v] / len : 0.0;
+  if (name == "flow") return {name, "m³/m", "near-bed water that passed over, per unit width, over the run", r.flow(), {}};
+  if (name == "shear_peak") return {name, "Pa", "largest bed shear stress τ of eq. (9) over the run", r.shearPeak(), {}};
+  if (name == "wetness") {
+    TerrainMap m{name, "-", "fraction of the run's bed time with water within h above", r.wetTime(), {}};
+    for (double& wet : m.values) wet = r.time() > 0 ? wet / r.time() : 0.0;
+    return m;
   }
+  if (name == "shear_mean") {
+    TerrainMap m{name, "Pa", "mean bed shear stress τ over the time it was wet", r.shearIntegral(), {}};
+    const std::vector<double> wet = r.wetTime();
+    for (size_t v = 0; v < wet.size(); ++v) m.values[v] = wet[v] > 0 ? m.values[v] / wet[v] : 0.0;
+    return m;
+  }
+  if (name == "flow_direction") {
+    TerrainMap m{name, "-", "mean near-bed flow direction over the run, a unit vector (x, z)", r.flowX(), r.flowZ()};
+    for (size_t v = 0; v < m.values.size(); ++v) {
+      const double len = std::hypot(m.values[v], m.second[v]);
+      m.values[v] = len > 0 ? m.values[v] / len : 0.0;
+      m.second[v] = len > 0 ? m.second[v] / len : 0.0;
+    }
+    return m;
+  }
+  throw std::invalid_argument("no erosion map called '" + name + "'");
+}
+
+std::vector<TerrainMap> erosionMaps(const World& w, const std::vector<std::string>& names) {
   std::vector<TerrainMap> maps;
-  for (TerrainMap* m : {&wear, &deposition, &sediment, &flow, &wetness, &peak, &mean, &direction}) maps.push_back(std::move(*m));
+  for (const std::string& n : names) maps.push_back(erosionMap(w, n));
   return maps;
 }
 

@@ -34,7 +34,11 @@ const std::vector<std::string>& erosionMapNames();
 /// vertex per unit width [m³/m]; wetness, its wet bed time over the recorded bed time [0, 1];
 /// shear_peak and shear_mean, the largest τ and its mean over the wet time [Pa]; flow_direction,
 /// the unit vector of the summed near-bed flow (x in values, z in second; 0 where none passed).
-std::vector<TerrainMap> erosionMaps(const World& w);
+std::vector<TerrainMap> erosionMaps(const World& w, const std::vector<std::string>& names = erosionMapNames());
+/// The one map called `name` (only its own work; std::invalid_argument for a name that is none).
+TerrainMap erosionMap(const World& w, const std::string& name);
+/// Whether `name` is one of erosionMapNames().
+bool isErosionMap(const std::string& name);
 
 /// Values on an nx × nz grid resampled bilinearly onto nx2 × nz2 points spanning the same
 /// rectangle (the corners kept exactly): for an engine's preferred sizes (Unreal's 1009, 2017,

@@ -240,12 +240,13 @@ void Renderer::uploadTerrain(const Frame& f) {
   heightMin_ = *lo, heightMax_ = *hi;
   changeMax_ = 0;
   for (float c : f.change) changeMax_ = std::max(changeMax_, std::abs(c));
-  // The erosion map, when the frame has one (zeros otherwise).
+  // The erosion map, when the frame has one (zeros otherwise, cleared on the GL side).
   const bool hasMap = f.map.size() == f.height.size();
   mapPair_ = hasMap && f.map2.size() == f.height.size();
-  const std::vector<float> zeros(hasMap && mapPair_ ? 0 : f.height.size(), 0.0f);
-  glTextureSubImage2D(map_, 0, 0, 0, f.nx, f.nz, GL_RED, GL_FLOAT, hasMap ? f.map.data() : zeros.data());
-  glTextureSubImage2D(map2_, 0, 0, 0, f.nx, f.nz, GL_RED, GL_FLOAT, mapPair_ ? f.map2.data() : zeros.data());
+  if (hasMap) glTextureSubImage2D(map_, 0, 0, 0, f.nx, f.nz, GL_RED, GL_FLOAT, f.map.data());
+  else glClearTexImage(map_, 0, GL_RED, GL_FLOAT, nullptr);
+  if (mapPair_) glTextureSubImage2D(map2_, 0, 0, 0, f.nx, f.nz, GL_RED, GL_FLOAT, f.map2.data());
+  else glClearTexImage(map2_, 0, GL_RED, GL_FLOAT, nullptr);
   mapMax_ = 0;
   if (hasMap)
     for (float v : f.map) mapMax_ = std::max(mapMax_, std::abs(v));

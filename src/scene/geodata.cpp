@@ -15,17 +15,13 @@
 #include <memory>
 #include <mutex>
 
+#include "scene/heightmap_size.h"
 #include "scene/input_file.h"
 #include "scene/output.h"
 
 namespace scour {
 
 namespace {
-
-constexpr long long kMaxPixels = 1LL << 27;  // as for the other heightmaps
-// A header claiming far more pixels than the bytes could hold (deflate packs at most about
-// 1,030 into one) is not elevation data; reading it would allocate the claimed size.
-constexpr double kMaxPixelsPerByte = 1100;
 
 void registerDrivers() {
   static std::once_flag once;
@@ -91,14 +87,7 @@ GeoRaster readGeoRaster(const std::string& file) {
   r.width = GDALGetRasterXSize(ds), r.height = GDALGetRasterYSize(ds);
   const long long w = r.width, h = r.height;
   if (GDALGetRasterCount(ds) < 1) throw TerrainError(file + ": holds no raster band");
-  if (w < 2 || h < 2)
-    throw TerrainError(file + ": a " + std::to_string(w) + " × " + std::to_string(h) +
-                       " raster: a heightmap needs at least 2 × 2 pixels");
-  if (w * h > kMaxPixels)
-    throw TerrainError(file + ": " + std::to_string(w) + " × " + std::to_string(h) + " pixels is more than this build reads");
-  if (1.0 * w * h > kMaxPixelsPerByte * double(std::max<size_t>(bytes, 1)))
-    throw TerrainError(file + ": its header claims " + std::to_string(w) + " × " + std::to_string(h) +
-                       " pixels in " + std::to_string(bytes) + " bytes, more than the file can hold");
+  checkHeightmapSize(file, w, h, double(std::max<size_t>(bytes, 1)), "raster", "the file");
   r.georeference = georeferenceOf(ds);
   GDALRasterBandH band = GDALGetRasterBand(ds, 1);
   int has = 0;
@@ -142,10 +131,11 @@ Georeference gridGeoreference(const TerrainSpec& t, int nx, int nz) {
   if (!in.valid) return in;
   const int w = GDALGetRasterXSize(ds), h = GDALGetRasterYSize(ds);
   const int cw = t.crop_w > 0 ? t.crop_w : w - t.crop_x, ch = t.crop_h > 0 ? t.crop_h : h - t.crop_z;
-  // Vertex (i, k) sits at pixel centre (crop_x + i sx + ½, crop_z + k sz + ½); output pixel
-  // (i, k) spans half an output pixel on either side of it.
-  const double sx = double(cw - 1) / (nx - 1), sz = double(ch - 1) / (nz - 1);
-  const double cx = t.crop_x + 0.5 - 0.5 * sx, cz = t.crop_z + 0.5 - 0.5 * sz;
+  return resampledGeoreference(in, t.crop_x, t.crop_z, double(cw - 1) / (nx - 1), double(ch - 1) / (nz - 1));
+}
+
+Georeference resampledGeoreference(const Georeference& in, double firstX, double firstZ, double sx, double sz) {
+  const double cx = firstX + 0.5 - 0.5 * sx, cz = firstZ + 0.5 - 0.5 * sz;
   const auto& g = in.transform;
   Georeference out = in;
   out.transform = {g[0] + g[1] * cx + g[2] * cz, g[1] * sx, g[2] * sz,

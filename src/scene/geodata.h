@@ -51,6 +51,11 @@ GeoRaster readGeoRaster(const std::string& file);
 /// and the resampling applied (invalid when the file has none or is not a GDAL raster).
 Georeference gridGeoreference(const TerrainSpec& t, int nx, int nz);
 
+/// The georeference of a grid whose vertex (i, k) lies at the centre of `in`'s pixel
+/// (firstX + i sx, firstZ + k sz): each output pixel spans half a step of the grid on either side
+/// of its vertex. Cropping and resampling a heightmap, and resampling a grid (--resample), alike.
+Georeference resampledGeoreference(const Georeference& in, double firstX, double firstZ, double sx, double sz);
+
 /// A local georeference for a grid with no input one: x to the right, z down the rows, in metres
 /// from the grid's origin (no coordinate system).
 Georeference localGeoreference(double x0, double z0, double dx, double dz);

@@ -128,15 +128,19 @@ std::vector<std::string> parseMapNames(const std::string& flag, const std::strin
   while (from <= text.size()) {
     const size_t to = std::min(text.find(',', from), text.size());
     const std::string name = text.substr(from, to - from);
-    if (std::find(all.begin(), all.end(), name) == all.end()) {
+    if (!isErosionMap(name)) {
       std::string list;
       for (const std::string& a : all) list += (list.empty() ? "" : ", ") + a;
       throw std::invalid_argument(flag + ": no map called '" + name + "' (there is " + list + ", or all, or none)");
     }
-    if (std::find(names.begin(), names.end(), name) == names.end()) names.push_back(name);
+    names.push_back(name);
     from = to + 1;
   }
-  return names;
+  // Each once, in erosionMapNames()' order.
+  std::vector<std::string> ordered;
+  for (const std::string& a : all)
+    if (std::find(names.begin(), names.end(), a) != names.end()) ordered.push_back(a);
+  return ordered;
 }
 
 json RunOutputs::exports(const World& w) {
@@ -146,7 +150,7 @@ json RunOutputs::exports(const World& w) {
   const double changeScale = writeErosionPng(dir_ / "erosion.png", hf, w.heightChange());
   if (options_.mesh) writeTerrainObj(dir_ / "mesh.obj", hf);
   json maps = options_.maps.empty() ? json(nullptr)
-                                    : writeErosionMaps(dir_ / "maps", erosionMaps(w), hf.nx(), hf.nz(), options_.maps);
+                                    : writeErosionMaps(dir_ / "maps", erosionMaps(w, options_.maps), hf.nx(), hf.nz(), options_.maps);
   return {{"maps", maps},
           {"height_png",
            {{"file", "height.png"},

@@ -27,8 +27,8 @@ enum class MapFormat { kPng16, kExr, kGeoTiff };
 nlohmann::json writeErosionMaps(const std::filesystem::path& dir, const std::vector<TerrainMap>& maps, int nx,
                                 int nz, const std::vector<std::string>& names, MapFormat format = MapFormat::kPng16,
                                 const Georeference* where = nullptr);
-/// "all", "none" or a comma-separated list of erosionMapNames(); std::invalid_argument naming
-/// `flag` otherwise.
+/// "all", "none" or a comma-separated list of erosionMapNames(), each once in that order;
+/// std::invalid_argument naming `flag` otherwise.
 std::vector<std::string> parseMapNames(const std::string& flag, const std::string& text);
 
 struct RunOutputOptions {

@@ -16,6 +16,7 @@
 
 #include "scene/assets.h"
 #include "scene/geodata.h"
+#include "scene/heightmap_size.h"
 #include "scene/input_file.h"
 #include "scene/presets.h"
 
@@ -29,21 +30,19 @@ struct Gray {
   std::vector<double> v;
 };
 
-constexpr long long kMaxPixels = 1LL << 27;  // 134 M pixels: 1 GB of doubles
-constexpr double kMaxPixelsPerByte = 1100;  // deflate (PNG) packs at most about 1,030
 
 Gray readRaw(const TerrainSpec& t) {
   const std::string& f = t.file;
   if (t.raw_width < 2 || t.raw_height < 2)
     throw TerrainError(f + ": a .r32 heightmap needs terrain.raw_size [width, height], each ≥ 2");
-  if (1LL * t.raw_width * t.raw_height > kMaxPixels)
+  if (1LL * t.raw_width * t.raw_height > kMaxHeightmapPixels)
     throw TerrainError(f + ": " + std::to_string(t.raw_width) + " × " +
                        std::to_string(t.raw_height) + " pixels is more than this build reads");
   // The file is exactly the grid: a longer one is another size (or another file), not a crop.
   const size_t want = size_t(t.raw_width) * t.raw_height * sizeof(float);
   size_t have = 0;
   try {
-    have = checkInputFile(f, "heightmap", size_t(kMaxPixels) * sizeof(float));
+    have = checkInputFile(f, "heightmap", size_t(kMaxHeightmapPixels) * sizeof(float));
   } catch (const InputFileError& e) {
     throw TerrainError(e.what());
   }
@@ -72,19 +71,9 @@ Gray decodeImage(const std::string& f, const std::vector<unsigned char>& bytes) 
     throw TerrainError(f + ": not a readable image (" + std::string(stbi_failure_reason()) + ")");
   if (comp != 1)
     throw TerrainError(f + ": expected a greyscale image, found " + std::to_string(comp) + " channels");
-  if (w < 2 || h < 2)
-    throw TerrainError(f + ": a " + std::to_string(w) + " × " + std::to_string(h) +
-                       " image: a heightmap needs at least 2 × 2 pixels");
-  if (1LL * w * h > kMaxPixels)
-    throw TerrainError(f + ": " + std::to_string(w) + " × " + std::to_string(h) +
-                       " pixels is more than this build reads");
-  // Deflate packs at most about 1,030 bytes into one (PNG rows add a filter byte each), and the
-  // run-length formats stb also reads far fewer: a header that claims more pixels per byte of
-  // the file is not a heightmap, and decoding it would fill a buffer of the claimed size (a
-  // 69-byte file asking for 10⁸ pixels, 1 GB; a 49 kB one for 10⁸, found by the fuzzer).
-  if (1.0 * w * h > kMaxPixelsPerByte * double(size))
-    throw TerrainError(f + ": its header claims " + std::to_string(w) + " × " + std::to_string(h) +
-                       " pixels in " + std::to_string(size) + " bytes, more than a PNG can hold");
+  // The run-length formats stb also reads pack far fewer pixels a byte than deflate (a 69-byte
+  // file asking for 10⁸ pixels, 1 GB; a 49 kB one for 10⁸, found by the fuzzer).
+  checkHeightmapSize(f, w, h, double(size), "image", "a PNG");
   Gray g;
   g.w = w, g.h = h;
   g.v.resize(size_t(w) * h);
@@ -127,16 +116,7 @@ Gray readExr(const std::string& f) {
     Imf::InputFile file(stream);
     const Imath::Box2i win = file.header().dataWindow();
     const long long w = 1LL * win.max.x - win.min.x + 1, h = 1LL * win.max.y - win.min.y + 1;
-    if (w < 2 || h < 2)
-      throw TerrainError(f + ": a " + std::to_string(w) + " × " + std::to_string(h) +
-                         " image: a heightmap needs at least 2 × 2 pixels");
-    if (w * h > kMaxPixels)
-      throw TerrainError(f + ": " + std::to_string(w) + " × " + std::to_string(h) +
-                         " pixels is more than this build reads");
-    // A header claiming far more pixels than compressed data could hold is not an image (as for PNG).
-    if (1.0 * w * h > kMaxPixelsPerByte * double(bytes.size()))
-      throw TerrainError(f + ": its header claims " + std::to_string(w) + " × " + std::to_string(h) +
-                         " pixels in " + std::to_string(bytes.size()) + " bytes, more than an EXR can hold");
+    checkHeightmapSize(f, w, h, double(bytes.size()), "image", "an EXR");
     const Imf::ChannelList& channels = file.header().channels();
     std::string channel, names;
     for (auto c = channels.begin(); c != channels.end(); ++c) names += (names.empty() ? "" : ", ") + std::string(c.name());

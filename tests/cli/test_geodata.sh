@@ -88,24 +88,23 @@ assert abs(h[0] - 318.0) < 1e-3 and abs(h[60] - 18.0) < 1e-3, (h[0], h[60])
 # The hole at column 40, row 20 is filled from around it (2000 − 200 + 0.08 · 25 − 1700 = 102).
 assert abs(h[20 * 61 + 40] - 102.0) < 3.0, h[20 * 61 + 40]  # between its neighbours (97 … 107)
 PY
-# A file GDAL cannot read: exit 2, GDAL's reason, the field named.
+# The scene with terrain.file FILE is refused: exit 2, the message WANT, no summary written.
+refused() {
+  local file="$1" want="$2" name="${1%.*}"
+  sed -e "s/\"file\": \"dem.tif\"/\"file\": \"$file\"/" "$tmp/scene.json" > "$tmp/$name.json"
+  set +e
+  msg=$("$scour" run "$tmp/$name.json" --headless --steps 1 --out "$tmp/$name" 2>&1)
+  rc=$?
+  set -e
+  [ "$rc" -eq 2 ] || { echo "$file: expected exit 2, got $rc: $msg"; exit 1; }
+  echo "$msg" | grep -qF "$want" || { echo "$file: unexpected message: $msg"; exit 1; }
+  [ ! -e "$tmp/$name/summary.json" ] || { echo "$file: a summary was written"; exit 1; }
+}
+# A file GDAL cannot read: GDAL's reason, the file named.
 printf 'not a tiff' > "$tmp/bad.tif"
-sed -e 's/"file": "dem.tif"/"file": "bad.tif"/' "$tmp/scene.json" > "$tmp/bad.json"
-set +e
-msg=$("$scour" run "$tmp/bad.json" --headless --steps 1 --out "$tmp/bad" 2>&1)
-rc=$?
-set -e
-[ "$rc" -eq 2 ] || { echo "expected exit 2, got $rc: $msg"; exit 1; }
-echo "$msg" | grep -q "bad.tif: GDAL cannot read it as elevation data (" || { echo "unexpected message: $msg"; exit 1; }
-[ ! -e "$tmp/bad/summary.json" ]
-# Every pixel NoData: refused.
+refused bad.tif "bad.tif: GDAL cannot read it as elevation data ("
+# Every pixel NoData.
 python3 -c "
 open('$tmp/empty.asc','w').write('ncols 3\nnrows 3\nxllcorner 0\nyllcorner 0\ncellsize 1\nNODATA_value -9999\n' + '-9999 -9999 -9999\n' * 3)"
-sed -e 's/"file": "dem.tif"/"file": "empty.asc"/' "$tmp/scene.json" > "$tmp/empty.json"
-set +e
-msg=$("$scour" run "$tmp/empty.json" --headless --steps 1 --out "$tmp/empty" 2>&1)
-rc=$?
-set -e
-[ "$rc" -eq 2 ] || { echo "expected exit 2, got $rc: $msg"; exit 1; }
-echo "$msg" | grep -q "empty.asc: holds no data (every pixel is NoData" || { echo "unexpected message: $msg"; exit 1; }
+refused empty.asc "empty.asc: holds no data (every pixel is NoData"
 echo "geodata: ok"

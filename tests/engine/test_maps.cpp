@@ -17,11 +17,19 @@
 
 using namespace scour;
 
-TEST_CASE("the erosion maps sum to the ledger's volumes", "[maps][budget]") {
-  // The valley river at N = 20 after a short spin-up: both erosion and deposition under way.
+namespace {
+// The valley river at N = 20 after a short spin-up: erosion and deposition under way in a few
+// hundred steps.
+SceneSpec quickValley() {
   SceneSpec spec = presetSpec("valley", 0.3);
   spec.params.morphological_factor = 20;
   spec.params.morphological_spinup = 0.02;
+  return spec;
+}
+}  // namespace
+
+TEST_CASE("the erosion maps sum to the ledger's volumes", "[maps][budget]") {
+  const SceneSpec spec = quickValley();
   World w(buildScene(spec).desc);
   for (int k = 0; k < 250; ++k) w.step();
   const std::vector<TerrainMap> maps = erosionMaps(w);
@@ -103,9 +111,7 @@ TEST_CASE("the flow record shares each near-bed particle's flux over its footpri
 }
 
 TEST_CASE("the flow maps: wetness in [0, 1], dry vertices without flow or shear", "[maps]") {
-  SceneSpec spec = presetSpec("valley", 0.3);
-  spec.params.morphological_factor = 20;
-  spec.params.morphological_spinup = 0.02;
+  const SceneSpec spec = quickValley();
   World w(buildScene(spec).desc);
   for (int k = 0; k < 150; ++k) w.step();
   const std::vector<TerrainMap> maps = erosionMaps(w);
@@ -144,9 +150,7 @@ TEST_CASE("the flow maps: wetness in [0, 1], dry vertices without flow or shear"
 }
 
 TEST_CASE("the flow record: the same at 1 and 2 threads, through a saved state", "[maps][determinism]") {
-  SceneSpec spec = presetSpec("valley", 0.3);
-  spec.params.morphological_factor = 20;
-  spec.params.morphological_spinup = 0.02;
+  const SceneSpec spec = quickValley();
   auto run = [&](int threads, bool viaState) {
     omp_set_num_threads(threads);
     World w(buildScene(spec).desc);
