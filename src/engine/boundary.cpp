@@ -59,7 +59,12 @@ int BoundarySampler::blockCells(const Heightfield& hf, double spacing) {
   // Two particles per cell (one per triangle) against one per block: whichever density is nearer
   // one per Δs² (equally far, in ratio, at Δs / cell = 2^(−1/4)).
   if (r <= std::pow(2.0, -0.25)) return 0;
-  return int(std::clamp(std::lround(r), 1L, long(kTileCells)));
+  // b × b cells to a block, b the whole number whose density 1 / (b cells)² is nearest one per Δs²
+  // in ratio, as above: b + 1 once r passes √(b (b + 1)) (at Δs / cell = 1.49, blocks of 2 cells
+  // give 0.55 particles per Δs², single cells 2.2).
+  long b = std::max(1L, long(std::floor(r)));
+  if (r * r > double(b) * double(b + 1)) ++b;
+  return int(std::clamp(b, 1L, long(kTileCells)));
 }
 
 int BoundarySampler::tileOf(int triangle, int cellsX) const {
@@ -112,7 +117,18 @@ void BoundarySampler::sampleBlock(const Heightfield& hf, int i0, int k0, int bx,
         auto c = hf.triangleCorners(2 * (k * cellsX + i) + s);
         area3d += 0.5 * (c[1] - c[0]).cross(c[2] - c[0]).norm();
       }
-  if (std::lround(std::sqrt(area3d) / spacing) >= 2) return sampleCells(hf, i0, k0, i0 + bx, k0 + bz, spacing, out);
+  if (std::lround(std::sqrt(area3d) / spacing) >= 2) {
+    // Too steep for one particle: halve the block (a slope needs a few more particles, not one per
+    // triangle); a single cell that is still too steep (a cliff) is sampled triangle by triangle.
+    if (bx == 1 && bz == 1) return sampleCells(hf, i0, k0, i0 + 1, k0 + 1, spacing, out);
+    const int hx = (bx + 1) / 2, hz = (bz + 1) / 2;
+    for (int k : {0, hz})
+      for (int i : {0, hx}) {
+        const int sx = i == 0 ? hx : bx - hx, sz = k == 0 ? hz : bz - hz;
+        if (sx > 0 && sz > 0) sampleBlock(hf, i0 + i, k0 + k, sx, sz, spacing, out);
+      }
+    return;
+  }
   const double xc = hf.x0() + (i0 + 0.5 * bx) * hf.dx(), zc = hf.z0() + (k0 + 0.5 * bz) * hf.dz();
   const int tri = hf.surface(xc, zc).triangle;
   auto c = hf.triangleCorners(tri);

@@ -85,8 +85,8 @@ class BoundarySampler {
   /// Appends the particles of each triangle of the cells [i0, i1) × [k0, k1), row by row.
   static void sampleCells(const Heightfield& hf, int i0, int k0, int i1, int k1, double spacing,
                           BoundaryParticles& out);
-  /// Appends the particles of the block of bx × bz cells from cell (i0, k0): one, or those of its
-  /// triangles when it is too steep for one.
+  /// Appends the particles of the block of bx × bz cells from cell (i0, k0): one, or, when it is
+  /// too steep for one, those of its halves (a single cell: those of its triangles).
   static void sampleBlock(const Heightfield& hf, int i0, int k0, int bx, int bz, double spacing,
                           BoundaryParticles& out);
   /// The block's side in cells for a terrain and Δs (engine.boundary_sampling=spacing); 0: each

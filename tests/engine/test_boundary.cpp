@@ -194,22 +194,29 @@ TEST_CASE("spacing sampling: one boundary particle per block of cells about Δs 
   Heightfield hf(65, 65, 0.01, 0.01);
   CHECK(BoundarySampler::blockCells(hf, 0.021) == 2);
   CHECK(BoundarySampler::blockCells(hf, 0.009) == 1);
+  // Rounded in ratio: 2 cells once Δs / cell passes √2 (the canyon at scale 0.3: 1.49), 3 past √6.
+  CHECK(BoundarySampler::blockCells(hf, 0.0141) == 1);
+  CHECK(BoundarySampler::blockCells(hf, 0.0149) == 2);
+  CHECK(BoundarySampler::blockCells(hf, 0.0244) == 2);
+  CHECK(BoundarySampler::blockCells(hf, 0.0246) == 3);
   CHECK(BoundarySampler::blockCells(hf, 0.008) == 0);
   CHECK(BoundarySampler::blockCells(hf, 0.5) == BoundarySampler::kTileCells);
   std::mt19937 rng(11);
   std::uniform_real_distribution<double> u(0.0, 0.004);
   for (double& h : hf.heights()) h = u(rng);  // rough, finer than Δs, but not steep
-  // A cliff through the block of cells (4–5, 2–3): 5 cm up from vertex column 5 on.
+  // A cliff through the blocks of cells (4–5, ·): 12 cm up from vertex column 5 on.
   for (int k = 0; k < hf.nz(); ++k)
-    for (int i = 5; i < hf.nx(); ++i) hf.at(i, k) += 0.05;
+    for (int i = 5; i < hf.nx(); ++i) hf.at(i, k) += 0.12;
   BoundarySampler sampler(hf, 0.021, BoundarySampling::kSpacing);
   REQUIRE(sampler.block() == 2);
   REQUIRE(sampler.updateActiveTiles(hf, {Vec3f(0.03f, 0.01f, 0.03f)}, 0.02));
   REQUIRE(sampler.activeTiles() == std::vector<int>{0});
   BoundaryParticles b;
   sampler.generate(hf, b);
-  // 16 blocks of the 8 × 8 cells; the 4 along the cliff (cells i = 4, 5) by triangle: 8 each.
-  size_t blocks = 0, byTriangle = 0;
+  // 16 blocks of the 8 × 8 cells; the 4 along the cliff (cells i = 4, 5) are too steep for one
+  // particle and are halved: the cells on top (i = 5) one particle each, the riser's (i = 4, 12 cm
+  // over 1 cm) by triangle.
+  size_t blocks = 0, cells = 0, byTriangle = 0;
   double area = 0;
   for (size_t j = 0; j < b.size(); ++j) {
     area += b.area[j];
@@ -219,7 +226,15 @@ TEST_CASE("spacing sampling: one boundary particle per block of cells about Δs 
     if (b.patch[j] < 0) {
       ++byTriangle;
       const int cell = b.triangle[j] / 2;
-      CHECK((cell % 64 == 4 || cell % 64 == 5));
+      CHECK(cell % 64 == 4);
+      continue;
+    }
+    if (b.extent[j] == (1 | 1 << 4)) {
+      ++cells;
+      CHECK(b.patch[j] % 64 == 5);
+      CHECK(b.area[j] == Approx(1e-4).epsilon(1e-12));
+      CHECK(p.x() == Approx(0.055).margin(1e-7));
+      CHECK(p.z() == Approx(0.01 * (b.patch[j] / 64 + 0.5)).margin(1e-7));
       continue;
     }
     ++blocks;
@@ -233,7 +248,8 @@ TEST_CASE("spacing sampling: one boundary particle per block of cells about Δs 
     CHECK(p.z() == Approx(0.01 * (k0 + 1)).margin(1e-7));
   }
   CHECK(blocks == 12);
-  CHECK(byTriangle == 4 * 8);
+  CHECK(cells == 8);
+  CHECK(byTriangle == 8 * 2);
   CHECK(area == Approx(0.08 * 0.08).epsilon(1e-12));  // the tile's area, exactly covered
   // What a block particle exchanges goes to its 8 triangles in equal parts, summing to it.
   const size_t j = size_t(std::find_if(b.patch.begin(), b.patch.end(), [](int q) { return q >= 0; }) - b.patch.begin());
