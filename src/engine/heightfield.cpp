@@ -13,8 +13,11 @@ double Heightfield::minHeight() const { return *std::min_element(h_.begin(), h_.
 double Heightfield::maxHeight() const { return *std::max_element(h_.begin(), h_.end()); }
 
 SurfacePoint Heightfield::surface(double x, double z) const {
-  double fx = std::clamp((x - x0_) / dx_, 0.0, double(nx_ - 1));
-  double fz = std::clamp((z - z0_) / dz_, 0.0, double(nz_ - 1));
+  // A place that is not a number reads the corner cell (clamp would pass NaN through, and the
+  // cell index of NaN reads memory outside the grid): the invariant check then names the particle.
+  auto cellCoordinate = [](double q, int last) { return q > 0.0 ? std::min(q, double(last)) : 0.0; };
+  double fx = cellCoordinate((x - x0_) / dx_, nx_ - 1);
+  double fz = cellCoordinate((z - z0_) / dz_, nz_ - 1);
   int i = std::min(int(fx), nx_ - 2);
   int k = std::min(int(fz), nz_ - 2);
   double u = fx - i, w = fz - k;

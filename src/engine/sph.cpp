@@ -241,7 +241,8 @@ void applyBoundaryForces(const SphConstants& k, const Heightfield& hf, const Dom
     const Eigen::Vector3d v = vhat[i].cast<double>();
     // The mirrored hydrostatic pressure below holds only where the pressure exceeds its rise
     // across the kernel; a particle at the free surface (a splash) gets a proportional share.
-    const double support = std::clamp(double(f.p[i]) / (k.rho0 * k.gravity * k.h), 0.0, 1.0);
+    // (Without gravity there is no growth to add, and a free surface's p = 0 over 0 was NaN.)
+    const double support = k.gravity > 0 ? std::clamp(double(f.p[i]) / (k.rho0 * k.gravity * k.h), 0.0, 1.0) : 0.0;
     const double rhoRatio = support * k.rho0 / f.rho[i];
     forEachWall(hf, dom, k.h, f.x[i], [&](const Eigen::Vector3d& nrm, double d) {
       acc += pressure * k.wallGradient(d) * nrm;
