@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # Elevation data in and out through GDAL (issue 17, docs/exports.md): a georeferenced GeoTIFF DEM
 # with NoData holes runs with erosion, and `scour export --format geotiff` writes heights that
-# GDAL reads back with the input's georeference and the run's eroded heights; an ASCII grid reads
-# too; a file GDAL cannot read is refused with exit 2 and GDAL's reason.
+# GDAL reads back with the input's georeference and the run's eroded heights; an ASCII grid and an
+# SRTM .hgt tile read too; a file GDAL cannot read is refused with exit 2 and GDAL's reason.
 set -euo pipefail
 scour="$1"
 tmp=$(mktemp -d)
@@ -87,6 +87,34 @@ assert min(h) > -10 and max(h) < 320, (min(h), max(h))
 assert abs(h[0] - 318.0) < 1e-3 and abs(h[60] - 18.0) < 1e-3, (h[0], h[60])
 # The hole at column 40, row 20 is filled from around it (2000 − 200 + 0.08 · 25 − 1700 = 102).
 assert abs(h[20 * 61 + 40] - 102.0) < 3.0, h[20 * 61 + 40]  # between its neighbours (97 … 107)
+PY
+# An SRTM tile (.hgt: 1201 × 1201 big-endian int16, the name gives its corner) reads too, its
+# voids (−32768) filled: heights 1000 + col / 10 m, resampled onto 61 × 61 vertices, lie on that
+# plane (bilinear resampling of a plane is exact).
+python3 - "$tmp/N36W112.hgt" <<'PY'
+import struct, sys
+n = 1201
+data = bytearray()
+for r in range(n):
+    for c in range(n):
+        void = 590 <= r <= 600 and 590 <= c <= 600
+        data += struct.pack(">h", -32768 if void else 1000 + c // 10)
+open(sys.argv[1], "wb").write(bytes(data))
+PY
+cat > "$tmp/hgt.json" <<'JSON'
+{"version": 1, "name": "hgt",
+ "terrain": {"kind": "heightmap", "file": "N36W112.hgt", "length_x": 3.0, "length_z": 3.0, "cell": 0.05,
+             "heights": "metres", "base": -1000.0},
+ "effects": ["fluid_motion"]}
+JSON
+"$scour" run "$tmp/hgt.json" --headless --steps 1 --threads 2 --out "$tmp/hgt" >/dev/null
+python3 - "$tmp/hgt/height.r32" <<'PY'
+import struct, sys
+h = struct.unpack(f"<{61 * 61}f", open(sys.argv[1], "rb").read())
+# Vertex i lies over column 20 i: 2 i m above the base, within the steps of col // 10.
+for k in (0, 30, 60):
+    for i in (0, 15, 30, 45, 60):
+        assert abs(h[k * 61 + i] - 2.0 * i) < 1.0, (k, i, h[k * 61 + i])
 PY
 # The scene with terrain.file FILE is refused: exit 2, the message WANT, no summary written.
 refused() {
