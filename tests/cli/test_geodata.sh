@@ -71,14 +71,20 @@ gdalinfo -json "$tmp/geo/maps/wetness.tif" > "$tmp/wet.json"
 python3 -c "
 import json, sys; a = json.load(open('$tmp/wet.json')); b = json.load(open('$tmp/in.json'))
 assert a['geoTransform'] == b['geoTransform'] and len(a['bands']) == 1"
-# An ASCII grid reads directly (holes filled), with the heights as they are (lowered by base).
-cat > "$tmp/asc.json" <<'JSON'
-{"version": 1, "name": "asc",
- "terrain": {"kind": "heightmap", "file": "dem.asc", "length_x": 3.0, "length_z": 1.5, "cell": 0.05,
-             "heights": "metres", "base": -1700.0},
+# One step of a scene NAME on terrain.file FILE, 3 m × LENGTH_Z m at 5 cm cells, heights as they
+# are lowered by BASE: the terrain it read is in $tmp/NAME/height.r32.
+heights_of() {
+  local name="$1" file="$2" length_z="$3" base="$4"
+  cat > "$tmp/$name.json" <<JSON
+{"version": 1, "name": "$name",
+ "terrain": {"kind": "heightmap", "file": "$file", "length_x": 3.0, "length_z": $length_z, "cell": 0.05,
+             "heights": "metres", "base": $base},
  "effects": ["fluid_motion"]}
 JSON
-"$scour" run "$tmp/asc.json" --headless --steps 1 --threads 2 --out "$tmp/asc" >/dev/null
+  "$scour" run "$tmp/$name.json" --headless --steps 1 --threads 2 --out "$tmp/$name" >/dev/null
+}
+# An ASCII grid reads directly (holes filled), with the heights as they are (lowered by base).
+heights_of asc dem.asc 1.5 -1700.0
 python3 - "$tmp/asc/height.r32" <<'PY'
 import struct, sys
 h = struct.unpack(f"<{61 * 31}f", open(sys.argv[1], "rb").read())
@@ -101,13 +107,7 @@ for r in range(n):
         data += struct.pack(">h", -32768 if void else 1000 + c // 10)
 open(sys.argv[1], "wb").write(bytes(data))
 PY
-cat > "$tmp/hgt.json" <<'JSON'
-{"version": 1, "name": "hgt",
- "terrain": {"kind": "heightmap", "file": "N36W112.hgt", "length_x": 3.0, "length_z": 3.0, "cell": 0.05,
-             "heights": "metres", "base": -1000.0},
- "effects": ["fluid_motion"]}
-JSON
-"$scour" run "$tmp/hgt.json" --headless --steps 1 --threads 2 --out "$tmp/hgt" >/dev/null
+heights_of hgt N36W112.hgt 3.0 -1000.0
 python3 - "$tmp/hgt/height.r32" <<'PY'
 import struct, sys
 h = struct.unpack(f"<{61 * 61}f", open(sys.argv[1], "rb").read())
