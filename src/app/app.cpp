@@ -305,6 +305,7 @@ int runApp(const SceneSpec& spec, const AppOptions& o) {
   Mouse mouse;
   WorkerMessages messages;
   TimePlots plots;
+  SourceWatch watch;
   const double opened = glfwGetTime();
   long frames = 0, firstStep = -1, rebuilds = 0, surfaceFrames = 0, levelChanges = 0;
   int lastLevel = state.budget.level();
@@ -332,6 +333,7 @@ int runApp(const SceneSpec& spec, const AppOptions& o) {
     actions.setView(viewOf(size, snap, *orbit));
     replay.play(frames, actions);
     applyShortcuts(keys.take(), actions);
+    if (fresh) watch.see(snap, actions);
     const int hovered = mouse.read(window, actions, *orbit, replay.holdsMouse());
 
     const double t0 = glfwGetTime();
@@ -394,7 +396,8 @@ int runApp(const SceneSpec& spec, const AppOptions& o) {
     o.stats->quality = state.budget.describe(), o.stats->rebuilds = rebuilds;
     o.stats->surfaceFrames = surfaceFrames, o.stats->levelChanges = levelChanges;
   }
-  std::cout << exitReport(last, frames, actions, errors);
+  watch.see(last, actions);
+  std::cout << exitReport(last, frames, actions, errors, watch.most());
   return errors == 0 ? 0 : 1;
 }
 

@@ -1,21 +1,32 @@
 #include "app/exit_report.h"
 
+#include <algorithm>
 #include <sstream>
 
 namespace scour {
 
-std::string exitReport(const Snapshot& last, long frames, const Actions& actions, long glErrors) {
-  // Near the last placed or moved source, and around its disk within 3 Δs (there only what it
-  // emits: it stands 6 Δs over the terrain; a layer it emits takes longer than the next to leave),
-  // not water flowing past below.
-  long near = 0, atDisk = 0;
+NearSource countNearSource(const Snapshot& snap, const Actions& actions) {
+  NearSource n;
   const Eigen::Vector3d& source = actions.lastSource();
   if (source.allFinite())
-    for (const auto& x : last.frame.position) {
+    for (const auto& x : snap.frame.position) {
       const double d = (x.cast<double>() - source).norm();
-      near += d < 0.25;
-      atDisk += d < actions.lastRadius() + 3 * last.frame.spacing;
+      n.near += d < 0.25;
+      n.atDisk += d < actions.lastRadius() + 3 * snap.frame.spacing;
     }
+  return n;
+}
+
+void SourceWatch::see(const Snapshot& snap, const Actions& actions) {
+  const Eigen::Vector3d& source = actions.lastSource();
+  if (!source.allFinite()) return;
+  if (source != source_) source_ = source, most_ = 0;  // placed or moved: count afresh
+  most_ = std::max(most_, countNearSource(snap, actions).atDisk);
+}
+
+std::string exitReport(const Snapshot& last, long frames, const Actions& actions, long glErrors,
+                       long mostAtDisk) {
+  const NearSource n = countNearSource(last, actions);
   std::ostringstream where;
   for (const Source& s : last.sources)
     where << (where.tellp() > 0 ? " " : "") << formatPoint(s.center);
@@ -25,8 +36,9 @@ std::string exitReport(const Snapshot& last, long frames, const Actions& actions
       << "]; " << last.sinks.size() << " sinks, removed " << last.removedBySinks << "; "
       << last.snapshots.size() << " snapshots; erosion.k_eps " << last.params.k_eps << "; emitted "
       << last.emitted << "; painted " << last.painted
-      << "; particles within 0.25 m of the last placed or moved source " << near
-      << ", around its disk " << atDisk << "; GL errors: " << glErrors << "\n";
+      << "; particles within 0.25 m of the last placed or moved source " << n.near
+      << ", around its disk " << n.atDisk << " (at most " << std::max(mostAtDisk, n.atDisk)
+      << " in one frame since it was placed or moved); GL errors: " << glErrors << "\n";
   for (const std::string& line : actions.log()) out << "log: " << line << "\n";
   return out.str();
 }

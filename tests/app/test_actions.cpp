@@ -194,9 +194,18 @@ TEST_CASE("the exit report counts the water near the last placed source and list
   snap.frame.position = {s.center.cast<float>(),
                          (s.center + Eigen::Vector3d(0.2, 0, 0)).cast<float>(),
                          (s.center + Eigen::Vector3d(0, 0, 0.4)).cast<float>()};
-  const std::string report = exitReport(snap, 7, actions, 0);
+  SourceWatch watch;
+  watch.see(snap, actions);
+  snap.frame.position.front() += Eigen::Vector3f(0, -1, 0);  // the layer leaves the disk
+  const std::string report = exitReport(snap, 7, actions, 0, watch.most());
   CHECK(report.rfind("closed after 7 frames; simulated 0 s, 0 steps; 1 sources at [(", 0) == 0);
-  CHECK(report.find("particles within 0.25 m of the last placed or moved source 2, around its "
-                    "disk 1; GL errors: 0\n") != std::string::npos);
+  CHECK(report.find("particles within 0.25 m of the last placed or moved source 1, around its "
+                    "disk 0 (at most 1 in one frame since it was placed or moved); GL errors: "
+                    "0\n") != std::string::npos);
   CHECK(report.find("\nlog: source placed at (") != std::string::npos);
+  // A source placed elsewhere is counted afresh: no particle is around its disk yet.
+  actions.click(560, 380);
+  REQUIRE((actions.lastSource() - s.center).norm() > 0.1);
+  watch.see(snap, actions);
+  CHECK(watch.most() == 0);
 }
