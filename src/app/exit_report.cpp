@@ -20,12 +20,13 @@ NearSource countNearSource(const Snapshot& snap, const Actions& actions) {
 void SourceWatch::see(const Snapshot& snap, const Actions& actions) {
   const Eigen::Vector3d& source = actions.lastSource();
   if (!source.allFinite()) return;
-  if (source != source_) source_ = source, most_ = 0;  // placed or moved: count afresh
-  most_ = std::max(most_, countNearSource(snap, actions).atDisk);
+  if (source != source_) source_ = source, most_ = {};  // placed or moved: count afresh
+  const NearSource now = countNearSource(snap, actions);
+  most_.near = std::max(most_.near, now.near), most_.atDisk = std::max(most_.atDisk, now.atDisk);
 }
 
 std::string exitReport(const Snapshot& last, long frames, const Actions& actions, long glErrors,
-                       long mostAtDisk) {
+                       const NearSource& most) {
   const NearSource n = countNearSource(last, actions);
   std::ostringstream where;
   for (const Source& s : last.sources)
@@ -37,8 +38,9 @@ std::string exitReport(const Snapshot& last, long frames, const Actions& actions
       << last.snapshots.size() << " snapshots; erosion.k_eps " << last.params.k_eps << "; emitted "
       << last.emitted << "; painted " << last.painted
       << "; particles within 0.25 m of the last placed or moved source " << n.near
-      << ", around its disk " << n.atDisk << " (at most " << std::max(mostAtDisk, n.atDisk)
-      << " in one frame since it was placed or moved); GL errors: " << glErrors << "\n";
+      << ", around its disk " << n.atDisk << " (at most " << std::max(most.near, n.near) << " and "
+      << std::max(most.atDisk, n.atDisk) << " in one frame since it was placed or moved); GL errors: "
+      << glErrors << "\n";
   for (const std::string& line : actions.log()) out << "log: " << line << "\n";
   return out.str();
 }

@@ -17,23 +17,24 @@ struct NearSource {
 };
 NearSource countNearSource(const Snapshot& snap, const Actions& actions);
 
-/// The most particles around the last placed or moved source's disk in one snapshot since it was
-/// placed or moved. A layer leaves the disk in about the time the next one takes to come, so the
-/// last snapshot alone may show none although the source pours.
+/// The most particles near the last placed or moved source and around its disk, each in one
+/// snapshot since it was placed or moved. A layer leaves the disk in about the time the next one
+/// takes to come, and the water under it flows on, so the last snapshot alone may show none
+/// although the source pours.
 class SourceWatch {
  public:
   void see(const Snapshot& snap, const Actions& actions);
-  long most() const { return most_; }
+  const NearSource& most() const { return most_; }
 
  private:
   Eigen::Vector3d source_ = Eigen::Vector3d::Constant(std::numeric_limits<double>::quiet_NaN());
-  long most_ = 0;
+  NearSource most_;
 };
 
 /// The report on `last`, the worker's final snapshot, after `frames` frames with `glErrors`
-/// GL errors, `mostAtDisk` from a SourceWatch: one summary line, then the actions' log, a "log: "
-/// line each.
+/// GL errors, `most` from a SourceWatch: one summary line, then the actions' log, a "log: " line
+/// each.
 std::string exitReport(const Snapshot& last, long frames, const Actions& actions, long glErrors,
-                       long mostAtDisk);
+                       const NearSource& most);
 
 }  // namespace scour

@@ -7,14 +7,16 @@ here="$(dirname "$0")"
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 command -v xvfb-run >/dev/null || { echo "xvfb-run is missing (scripts/setup.sh installs xvfb)"; exit 1; }
+# Paused, so the picture is the scene's start whatever the machine's speed (how far the water has
+# run in 15 frames changes its water-coloured pixels from about 550 to under 200).
 out=$(xvfb-run -a -s "-screen 0 800x600x24" "$scour" valley --scale 0.3 --size 640x400 --terrain shaded --quality fine --quit-after-frames 15 \
-      --screenshot "$tmp/shot.png" 2>&1)
+      --paused --screenshot "$tmp/shot.png" 2>&1)
 grep -q "closed after 15 frames" <<<"$out" || { echo "unexpected: $out"; exit 1; }
 grep -q "GL errors: 0" <<<"$out" || { echo "GL errors: $out"; exit 1; }
 read -r w h colours water < <(python3 "$here/png_stats.py" "$tmp/shot.png")
 [ "$w" = 640 ] && [ "$h" = 400 ] || { echo "screenshot is ${w}x$h"; exit 1; }
 [ "$colours" -gt 500 ] || { echo "screenshot nearly uniform: $colours colours"; exit 1; }
-[ "$water" -gt 500 ] || { echo "no water in the screenshot: $water water-coloured pixels"; exit 1; }
+[ "$water" -gt 300 ] || { echo "no water in the screenshot: $water water-coloured pixels"; exit 1; }
 echo "window: $out; screenshot ${w}x$h, $colours colours, $water water-coloured pixels"
 # A time-lapse recorded from the start: pictures at least 3 steps apart, all of one size, and
 # the video made when the window closes.
@@ -116,10 +118,11 @@ d = math.dist(a, b)
 assert d > 0.2, 'the source moved only %.3f m' % d
 print('dragged %.3f m' % d)
 " "$placed" "$dropped" || { echo "$out"; exit 1; }
-near=$(sed -n 's/.*particles within 0.25 m of the last placed or moved source \([0-9]*\).*/\1/p' <<<"$out")
 # The most in one frame since the drag: a layer leaves the disk in about the time the next takes to
-# come, so the last frame alone may hold none.
-disk=$(sed -n 's/.*around its disk [0-9]* (at most \([0-9]*\) in one frame.*/\1/p' <<<"$out")
+# come, and the water under it flows on, so the last frame alone may hold none (how far the run got
+# in 120 frames depends on the machine).
+near=$(sed -n 's/.*around its disk [0-9]* (at most \([0-9]*\) and [0-9]* in one frame.*/\1/p' <<<"$out")
+disk=$(sed -n 's/.*around its disk [0-9]* (at most [0-9]* and \([0-9]*\) in one frame.*/\1/p' <<<"$out")
 emitted=$(sed -n 's/.*; emitted \([0-9]*\);.*/\1/p' <<<"$out")
 [ "${near:-0}" -ge 10 ] && [ "${disk:-0}" -ge 1 ] && [ "${emitted:-0}" -ge 10 ] \
   || { echo "too few particles from the moved source: $out"; exit 1; }
