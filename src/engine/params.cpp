@@ -19,6 +19,7 @@ const char* const kNeighborChoices[] = {"grid", "kd_tree", nullptr};
 const char* const kSamplingChoices[] = {"triangles", "spacing", nullptr};
 const char* const kAdvectionChoices[] = {"donor_acceptor", "naive_gradient", nullptr};
 const char* const kDiffusionFormChoices[] = {"consistent", "printed", nullptr};
+const char* const kSolverChoices[] = {"wcsph", "dfsph", nullptr};
 
 ParamInfo real(const char* key, const char* label, const char* symbol, const char* unit, double lo,
                double hi, const char* help, double SimParams::*m) {
@@ -87,6 +88,23 @@ std::vector<ParamInfo> makeTable() {
       slider(real("fluid.gravity", "Gravity", "g", "m/s²", 0.0, 100.0,
                   "Gravitational acceleration, pointing along −y.", &P::gravity),
              0.0, 30.0),
+      choice<&P::solver>(
+          "fluid.solver", "Pressure solver",
+          "wcsph: weakly compressible (Tait), Δt from the sound speed; dfsph: divergence-free "
+          "SPH, an implicit pressure at the density error asked for, Δt from the velocity.",
+          kSolverChoices),
+      slider(real("fluid.max_density_error", "Density error (DFSPH)", "η", "-", 1e-5, 0.1,
+                  "DFSPH: the mean compression (ρ − ρ0)/ρ0 the density solve leaves.",
+                  &P::max_density_error),
+             1e-4, 0.1),
+      slider(real("fluid.max_divergence_error", "Divergence error (DFSPH)", "η_v", "-", 1e-5, 0.1,
+                  "DFSPH: the mean compression rate × Δt, Δt (Dρ/Dt)/ρ0, the divergence solve "
+                  "leaves.",
+                  &P::max_divergence_error),
+             1e-4, 0.1),
+      slider(integer("fluid.max_iterations", "Solver iterations (DFSPH)", "", "-", 1.0, 10000.0,
+                     "DFSPH: the most iterations of each solve in a step.", &P::max_iterations),
+             1.0, 1000.0),
       real("time.max_dt", "Maximum time step", "Δt", "s", 1e-7, 0.01,
            "Upper bound on the adaptive time step (paper: 2 ms).", &P::max_dt),
       real("time.cfl", "CFL factor", "λ", "-", 0.01, 0.4,
@@ -102,6 +120,12 @@ std::vector<ParamInfo> makeTable() {
       slider(real("time.fixed_dt", "Fixed time step", "Δt", "s", 0.0, 0.01,
                   "If > 0, use this fixed step instead of the adaptive one.", &P::fixed_dt),
              1e-06, 0.01),
+      real("time.velocity_cfl", "Velocity CFL (DFSPH)", "λ_v", "-", 0.01, 1.0,
+           "DFSPH: Δt ≤ λ_v·h / |v|max; a particle moves at most λ_v h in a step.",
+           &P::velocity_cfl),
+      real("time.implicit_max_dt", "Maximum time step (DFSPH)", "Δt", "s", 1e-7, 0.05,
+           "DFSPH: upper bound on the adaptive time step (WCSPH's is time.max_dt).",
+           &P::implicit_max_dt),
       slider(real("boundary.penalty_stiffness", "Penalty stiffness", "K_S", "1/s²", 0.0, 1e12,
                   "Eq. (6) spring constant per unit mass; 0 derives it from the water depth.",
                   &P::penalty_stiffness),

@@ -20,6 +20,7 @@ enum class NeighborSearch { kGrid, kKdTree };                     // engine.neig
 enum class BoundarySampling { kTriangles, kSpacing };             // engine.boundary_sampling
 enum class SettlingAdvection { kDonorAcceptor, kNaiveGradient };  // sediment.advection
 enum class DiffusionForm { kConsistent, kPrinted };               // sediment.diffusion_form
+enum class FluidSolver { kWcsph, kDfsph };                        // fluid.solver
 
 struct SimParams {
   // --- fluid (paper §3) ---
@@ -43,6 +44,17 @@ struct SimParams {
   double surface_tension = 0.0;
   /// g, gravitational acceleration along −y [m/s²].
   double gravity = 9.81;
+  /// The pressure solver: weakly compressible SPH (the paper's, default) or divergence-free SPH
+  /// (Bender & Koschier 2015/2017; docs/model.md, "the implicit solver").
+  FluidSolver solver = FluidSolver::kWcsph;
+  /// DFSPH: the density solve iterates until the mean compression, (ρ* − ρ0)/ρ0 over the
+  /// particles, is at most this [-].
+  double max_density_error = 0.001;
+  /// DFSPH: the divergence solve iterates until the mean compression rate times Δt,
+  /// Δt (Dρ/Dt)/ρ0, is at most this [-].
+  double max_divergence_error = 0.001;
+  /// DFSPH: the most iterations of each solve in one step [-].
+  int max_iterations = 100;
 
   // --- time step (model.md §1) ---
   /// Upper bound on Δt (paper: 2 ms) [s].
@@ -56,6 +68,10 @@ struct SimParams {
   double density_cfl = 0.05;
   /// If > 0, Δt is fixed to this value (the paper's fixed-step policy) [s].
   double fixed_dt = 0.0;
+  /// DFSPH's step: Δt ≤ λ_v h / |v|max, the velocity CFL (no sound speed) [-].
+  double velocity_cfl = 0.25;
+  /// DFSPH's upper bound on Δt; WCSPH's is time.max_dt [s].
+  double implicit_max_dt = 0.005;
 
   // --- boundary (paper §3.1, eqs. 6–8) ---
   /// K_S, penalty stiffness per unit mass [1/s²]; 0 = derived from the scene's water depth.

@@ -206,19 +206,19 @@ double SphConstants::planeDensity(double d) const {
 }
 
 void computeForces(const SphConstants& k, const NeighborLists& nbrs,
-                   const std::vector<Vec3f>& vhat, Fluid& f) {
+                   const std::vector<Vec3f>& vhat, Fluid& f, bool pressure) {
   const size_t n = f.size();
   const float m = float(k.mass);
   const bool tension = k.kappa > 0.0f;
 #pragma omp parallel for schedule(static)
   for (size_t i = 0; i < n; ++i) {
-    const float pi_rho2 = f.p[i] / (f.rho[i] * f.rho[i]);
+    const float pi_rho2 = pressure ? f.p[i] / (f.rho[i] * f.rho[i]) : 0.0f;
     const Vec3f vi = vhat[i];
     Vec3f ap = Vec3f::Zero(), av = Vec3f::Zero(), at = Vec3f::Zero();
     forEachNeighbor(nbrs, f.x, f.x, i, [&](uint32_t j, const Vec3f& xij, float r) {
       if (r <= 0.0f) return;
       // Symmetric pressure term: −Σ m (p_i/ρ_i² + p_j/ρ_j²) ∇W_spiky.
-      const float pj_rho2 = f.p[j] / (f.rho[j] * f.rho[j]);
+      const float pj_rho2 = pressure ? f.p[j] / (f.rho[j] * f.rho[j]) : 0.0f;
       ap -= (m * (pi_rho2 + pj_rho2) * k.spiky(r) / r) * xij;
       // Müller's viscosity with the viscosity-kernel Laplacian, kinematic form.
       av += (m / f.rho[j] * k.visc(r)) * (vhat[j] - vi);
@@ -232,11 +232,11 @@ void computeForces(const SphConstants& k, const NeighborLists& nbrs,
 }
 
 void applyBoundaryForces(const SphConstants& k, const Heightfield& hf, const Domain& dom,
-                         const std::vector<Vec3f>& vhat, Fluid& f) {
+                         const std::vector<Vec3f>& vhat, Fluid& f, bool pressure) {
   const size_t n = f.size();
 #pragma omp parallel for schedule(static)
   for (size_t i = 0; i < n; ++i) {
-    const double pressure = 2.0 * k.mass * f.p[i] / (double(f.rho[i]) * f.rho[i]);
+    const double mirrored = 2.0 * k.mass * f.p[i] / (double(f.rho[i]) * f.rho[i]);
     Eigen::Vector3d acc = Eigen::Vector3d::Zero();
     const Eigen::Vector3d v = vhat[i].cast<double>();
     // The mirrored hydrostatic pressure below holds only where the pressure exceeds its rise
@@ -245,11 +245,12 @@ void applyBoundaryForces(const SphConstants& k, const Heightfield& hf, const Dom
     const double support = k.gravity > 0 ? std::clamp(double(f.p[i]) / (k.rho0 * k.gravity * k.h), 0.0, 1.0) : 0.0;
     const double rhoRatio = support * k.rho0 / f.rho[i];
     forEachWall(hf, dom, k.h, f.x[i], [&](const Eigen::Vector3d& nrm, double d) {
-      acc += pressure * k.wallGradient(d) * nrm;
+      if (pressure) acc += mirrored * k.wallGradient(d) * nrm;
       // The mirrored pressure grows hydrostatically into the wall, p_j = p_i + ρ0 g⃗·(x_j − x_i);
       // its share of the gradient is −(ρ0/ρ_i) M(d) g⃗, M the missing second moment of the
       // kernel-gradient identity. Without it, water along a vertical wall loses part of its
-      // support against gravity and sinks in a steady convection cell.
+      // support against gravity and sinks in a steady convection cell (with either solver: DFSPH
+      // mirrors κ_i, not its growth).
       const double mn = k.momentNormal(d), mt = k.momentTangential(d);
       const Eigen::Vector3d g(0.0, -k.gravity, 0.0);
       acc -= rhoRatio * (mt * g + (mn - mt) * nrm.dot(g) * nrm);

@@ -110,13 +110,15 @@ double integrateDensity(const SphConstants& k, const NeighborLists& nbrs, const 
                         const Domain& dom, const std::vector<Vec3f>& v, double dt, Fluid& f);
 
 /// Pressure, viscosity, surface tension and gravity: a_i. `vhat` is the velocity at the force
-/// time (the leapfrog's predicted full-step velocity).
+/// time (the leapfrog's predicted full-step velocity). Without `pressure` (DFSPH, whose solves
+/// make the pressure), the rest.
 void computeForces(const SphConstants& k, const NeighborLists& nbrs,
-                   const std::vector<Vec3f>& vhat, Fluid& f);
+                   const std::vector<Vec3f>& vhat, Fluid& f, bool pressure = true);
 
-/// Wall pressure (see above) and the eq. (6) penalty; adds to a_i.
+/// Wall pressure (see above), its hydrostatic growth and the eq. (6) penalty; adds to a_i. Without
+/// `pressure` (DFSPH, whose solves mirror the particle's own pressure), all but the mirrored term.
 void applyBoundaryForces(const SphConstants& k, const Heightfield& hf, const Domain& dom,
-                         const std::vector<Vec3f>& vhat, Fluid& f);
+                         const std::vector<Vec3f>& vhat, Fluid& f, bool pressure = true);
 
 /// Eqs. (7)–(8), no-slip friction from the boundary particles within h; adds to a_i.
 void applyNoSlip(const SphConstants& k, const NeighborLists& bnbrs, const BoundaryParticles& b,

@@ -38,6 +38,8 @@ const char* passName(Pass p) {
     case Pass::kTerrain: return "terrain";
     case Pass::kFlowMaps: return "flow_maps";
     case Pass::kInvariants: return "invariants";
+    case Pass::kPressureSolve: return "pressure_solve";
+    case Pass::kDivergenceSolve: return "divergence_solve";
     case Pass::kCount: break;
   }
   return "?";
@@ -50,6 +52,8 @@ Table1Group table1Group(Pass p) {
     case Pass::kForces:
     case Pass::kBoundaryForces:
     case Pass::kIntegrate:
+    case Pass::kPressureSolve:
+    case Pass::kDivergenceSolve:
     case Pass::kNoSlip: return Table1Group::kSph;
     case Pass::kBoundaryParticles:
     case Pass::kBoundaryNeighbors: return Table1Group::kBoundary;
@@ -65,6 +69,13 @@ namespace {
 
 SimParams resolve(SimParams p) {
   double contact = p.contact_over_spacing > 0 ? p.contact_over_spacing * p.spacing : p.spacing;
+  // DFSPH: the walls hold the water through the solves (dfsph.h) and the hard floor catches what
+  // they miss; the penalty acts only when the scene asks for it (model.md, "the implicit solver").
+  if (p.solver == FluidSolver::kDfsph && p.penalty_stiffness <= 0) {
+    p.penalty_stiffness = 0;
+    if (p.penalty_damping <= 0) p.penalty_damping = 0;
+    return p;
+  }
   // K_S: a particle arriving at a tenth of the sound speed is stopped within the contact distance.
   if (p.penalty_stiffness <= 0) p.penalty_stiffness = std::pow(0.1 * p.sound_speed / contact, 2);
   if (p.penalty_damping <= 0) p.penalty_damping = 2.0 * std::sqrt(p.penalty_stiffness);
@@ -91,6 +102,7 @@ bool putOnFloor(const Heightfield& floor, Vec3f& x, Vec3f& v) {
 World::World(WorldDesc d)
     : params_(resolve(d.params)),
       sph_(params_),
+      dfsphK_(sph_, params_.spacing),
       sediment_(params_),
       terrain_(std::move(d.terrain)),
       domain_(d.domain),
@@ -140,6 +152,7 @@ World::World(WorldDesc d)
     double p0 = d.pressure.empty() ? 0.0 : d.pressure[i];
     require(std::isfinite(p0) && p0 >= 0, "pressure: must be finite and ≥ 0");
     fluid_.push(d.particles[i], Vec3f::Zero(), supply_.nextId++, float(sph_.densityFor(p0)));
+    if (implicit()) fluid_.p.back() = float(p0), fluid_.rho.back() = float(sph_.rho0);  // DFSPH's first warm start
   }
   require(d.concentration.empty() || d.concentration.size() == d.particles.size(),
           "concentration: one value per particle expected");
@@ -157,7 +170,8 @@ World::World(WorldDesc d)
   }
   ledger_.defects.c_min_raw = ledger_.invariants.c_min, ledger_.defects.c_max_raw = ledger_.invariants.c_max;
   searchNeighbors();
-  if (effects_.fluid_motion) computeAccelerations();  // frozen fluid: no SPH pass ever runs
+  // Frozen fluid: no SPH pass ever runs.
+  if (effects_.fluid_motion) implicit() ? implicitAccelerations(false) : computeAccelerations();
 }
 
 double World::chooseDt() const {
@@ -172,7 +186,14 @@ double World::chooseDt() const {
   }
   const double h = sph_.h;
   double dt = params_.max_dt;
-  if (effects_.fluid_motion) {
+  if (effects_.fluid_motion && implicit()) {
+    // DFSPH: no sound to resolve. A particle moves at most λ_v h, the non-pressure forces (gravity)
+    // stay resolved, viscosity stays explicitly stable; the penalty bounds Δt only if it is on.
+    dt = std::min(params_.implicit_max_dt, params_.velocity_cfl * h / std::sqrt(double(v2)));
+    if (a2 > 0) dt = std::min(dt, params_.force_cfl * std::sqrt(h / std::sqrt(double(a2))));
+    if (params_.viscosity > 0) dt = std::min(dt, 0.125 * h * h / params_.viscosity);
+    if (params_.penalty_stiffness > 0) dt = std::min(dt, 0.5 / std::sqrt(params_.penalty_stiffness));
+  } else if (effects_.fluid_motion) {
     dt = std::min(dt, params_.cfl * h / std::max(sph_.soundSpeed(rhoMax), std::sqrt(double(v2))));
     if (a2 > 0) dt = std::min(dt, params_.force_cfl * std::sqrt(h / std::sqrt(double(a2))));
     if (densityRate_ > 0) dt = std::min(dt, params_.density_cfl / densityRate_);
@@ -215,6 +236,19 @@ void World::computeAccelerations() {
   });
   timed(Pass::kForces, [&] { computeForces(sph_, neighbors_.fluid(), vhat_, fluid_); });
   timed(Pass::kBoundaryForces, [&] { applyBoundaryForces(sph_, wall_.of(terrain_), domain_, vhat_, fluid_); });
+  if (effects_.no_slip) timed(Pass::kNoSlip, [&] { applyNoSlip(sph_, neighbors_.boundary(), boundary_, vhat_, fluid_); });
+}
+
+void World::implicitAccelerations(bool divergence) {
+  timed(Pass::kDensity, [&] { dfsphFactors(dfsphK_, neighbors_.fluid(), wall_.of(terrain_), domain_, fluid_, dfsph_); });
+  if (divergence)
+    timed(Pass::kDivergenceSolve, [&] {
+      divergenceSolve_ = solveDivergence(dfsphK_, neighbors_.fluid(), dt_, params_.max_divergence_error,
+                                         params_.max_iterations, fluid_, dfsph_);
+    });
+  vhat_ = fluid_.v;  // the non-pressure forces act at the step's end velocity
+  timed(Pass::kForces, [&] { computeForces(sph_, neighbors_.fluid(), vhat_, fluid_, false); });
+  timed(Pass::kBoundaryForces, [&] { applyBoundaryForces(sph_, wall_.of(terrain_), domain_, vhat_, fluid_, false); });
   if (effects_.no_slip) timed(Pass::kNoSlip, [&] { applyNoSlip(sph_, neighbors_.boundary(), boundary_, vhat_, fluid_); });
 }
 
@@ -278,6 +312,9 @@ void World::setParams(const SimParams& q) {
           "engine.neighbor_search changes with a reset");
   require(q.boundary_sampling == params_.boundary_sampling,
           "engine.boundary_sampling changes with a reset");
+  // The pressure means another thing to each solver (a state of the compressed fluid, or what the
+  // last solve needed): a switch needs a reset.
+  require(q.solver == params_.solver, "fluid.solver changes with a reset");
   // A new g changes every particle's potential energy: the ledger follows (what the fluid has been
   // given is counted in the new g from here on).
   if (q.gravity != params_.gravity) {
@@ -300,6 +337,7 @@ void World::setParams(const SimParams& q) {
   if (q.morphological_factor != params_.morphological_factor) factor_ = q.morphological_factor;
   params_ = resolve(q);
   sph_ = SphConstants(params_);
+  dfsphK_ = DfsphConstants(sph_, params_.spacing);
   simulationBox();
   if (!effects_.surface_tension) sph_.kappa = 0;
   sediment_ = SedimentConstants(params_);
@@ -320,10 +358,23 @@ StepStats World::step() {
     const Heightfield& floor = wall_.of(terrain_);
     const float xlo = float(terrain_.x0()), xhi = float(terrain_.xMax()), zlo = float(terrain_.z0()), zhi = float(terrain_.zMax());
     long contacts = 0;
+    // DFSPH: the whole step's non-pressure kick, then the pressure that keeps the density at ρ0
+    // after the drift; the drift below then has no kick of its own.
+    const float kick = implicit() ? 0.0f : half;
+    if (implicit()) {
+      timed(Pass::kIntegrate, [&] {
+#pragma omp parallel for schedule(static)
+        for (size_t i = 0; i < n0; ++i) fluid_.v[i] += full * fluid_.a[i];
+      });
+      timed(Pass::kPressureSolve, [&] {
+        densitySolve_ = solveDensity(dfsphK_, neighbors_.fluid(), dt_, params_.max_density_error, params_.max_iterations,
+                                     fluid_, dfsph_);
+      });
+    }
     timed(Pass::kIntegrate, [&] {
 #pragma omp parallel for schedule(static) reduction(+ : contacts)
       for (size_t i = 0; i < n0; ++i) {
-        fluid_.v[i] += half * fluid_.a[i];  // kick: v(t + Δt/2)
+        if (kick != 0.0f) fluid_.v[i] += kick * fluid_.a[i];  // kick: v(t + Δt/2)
         fluid_.x[i] += full * fluid_.v[i];  // drift: x(t + Δt)
         Vec3f& x = fluid_.x[i];
         Vec3f& v = fluid_.v[i];
@@ -360,7 +411,7 @@ StepStats World::step() {
     timed(Pass::kBoundaryNeighbors, [&] { buildBoundaryLists(); });
   }
   const size_t n = fluid_.size();
-  if (effects_.fluid_motion) {
+  if (effects_.fluid_motion && !implicit()) {
     timed(Pass::kIntegrate, [&] {
       // The force time's velocity, predicted from the half step: v̂ = v(t+Δt/2) + Δt/2 · a(t).
       vhat_.resize(n);
@@ -374,6 +425,9 @@ StepStats World::step() {
     });
   }
   sedimentWork();
+  // DFSPH's density, α and divergence solve after the terrain moved: a saved state then holds all
+  // they read, and a resumed run recomputes α from the same terrain (world_state.cpp).
+  if (effects_.fluid_motion && implicit()) implicitAccelerations(true);
   if (effects_.erosion || effects_.deposition)
     timed(Pass::kFlowMaps, [&] {
       if (!effects_.erosion) bedShear(sediment_, neighbors_.boundary(), boundary_, fluid_, sedimentWork_.tau);
@@ -388,6 +442,10 @@ StepStats World::step() {
   s.factor = stepFactor_;
   s.bed_step_ds = bedStep_;
   s.bed_fast_fraction = bedFast_;
+  if (implicit()) {
+    s.density_iterations = densitySolve_.iterations, s.density_error = densitySolve_.error;
+    s.divergence_iterations = divergenceSolve_.iterations, s.divergence_error = divergenceSolve_.error;
+  }
   s.step = step_;
   s.particles = n;
   float v2 = 0;

@@ -10,6 +10,10 @@
 //   choose Δt → kick ½Δt, drift → sinks / outflow → sources → [reorder along Z] → neighbor search →
 //   boundary particles of the tiles near water → density, pressure → forces → boundary forces →
 //   no-slip → kick ½Δt → invariants.
+// With fluid.solver = dfsph (dfsph.h, symplectic Euler): choose Δt → v += Δt a_np → density solve →
+//   drift → sinks, sources → neighbor search → sediment, erosion, terrain → density, α →
+//   divergence solve → a_np (viscosity, cohesion, gravity, the walls' hydrostatic term,
+//   no-slip) → invariants.
 // Passes that the scene does not call for (no sources, no friction, …) are not run at all.
 
 #include <array>
@@ -22,6 +26,7 @@
 #include <vector>
 
 #include "engine/boundary.h"
+#include "engine/dfsph.h"
 #include "engine/flow_record.h"
 #include "engine/fluid.h"
 #include "engine/heightfield.h"
@@ -50,6 +55,8 @@ enum class Pass {
   kTerrain,
   kFlowMaps,
   kInvariants,
+  kPressureSolve,    ///< DFSPH's density solve
+  kDivergenceSolve,  ///< DFSPH's divergence solve
   kCount
 };
 const char* passName(Pass p);
@@ -158,6 +165,10 @@ struct StepStats {
   /// [Δs], and the share of the exchanging bed (by area) that moved at least a tenth of the
   /// guard's bound [-].
   double morph_time = 0, factor = 1, bed_step_ds = 0, bed_fast_fraction = 0;
+  /// DFSPH (fluid.solver = dfsph): the iterations of the step's density and divergence solves and
+  /// the mean errors they ended at (relative, as fluid.max_density_error); 0 under WCSPH.
+  int density_iterations = 0, divergence_iterations = 0;
+  double density_error = 0, divergence_error = 0;
 };
 
 struct WorldDesc {
@@ -244,6 +255,9 @@ class World {
   double energyLedger() const { return ledger_.energy; }
   /// max |dρ/dt|/ρ of the last step (continuity density), which bounds the next Δt [1/s].
   double densityRate() const { return densityRate_; }
+  /// DFSPH: the last step's density and divergence solves (zero under WCSPH).
+  const SolveReport& densitySolve() const { return densitySolve_; }
+  const SolveReport& divergenceSolve() const { return divergenceSolve_; }
 
   /// A budget further than this from its initial value stops the run (relative).
   static constexpr double kSoilTolerance = 1e-6;
@@ -295,6 +309,10 @@ class World {
   /// The fluid–boundary lists, after buildFluidLists.
   void buildBoundaryLists();
   void computeAccelerations();
+  /// DFSPH after a neighbor search: density and α, the divergence solve (not before the first
+  /// step), then the non-pressure accelerations.
+  void implicitAccelerations(bool divergence);
+  bool implicit() const { return params_.solver == FluidSolver::kDfsph; }
   void removeParticles();
   void emit();
   void rain();
@@ -321,6 +339,7 @@ class World {
 
   SimParams params_;
   SphConstants sph_;
+  DfsphConstants dfsphK_;  ///< the implicit solver's kernel and wall tables
   SedimentConstants sediment_;
   Heightfield terrain_, initialTerrain_;
   WallSurface wall_;  // what the walls see of terrain_
@@ -347,6 +366,8 @@ class World {
   Ledger ledger_;
   /// max |dρ/dt|/ρ of the last continuity step [1/s]; 0 = none yet.
   double densityRate_ = 0;
+  DfsphWorkspace dfsph_;
+  SolveReport densitySolve_, divergenceSolve_;
   /// m (½|v|² + g y) of particle i [J].
   double particleEnergy(size_t i) const;
   std::array<double, size_t(Pass::kCount)> passSeconds_{};

@@ -264,6 +264,10 @@ void World::loadState(std::istream& in) {
   // with a kick), and the boundary lists are rebuilt on the boundary particles' places.
   buildFluidLists();
   if (needsBoundary()) buildBoundaryLists();
+  // DFSPH's α and wall gradients follow from the positions (the density it recomputes is the one
+  // saved, bit for bit: the same sums over the same lists).
+  if (implicit() && effects_.fluid_motion)
+    dfsphFactors(dfsphK_, neighbors_.fluid(), wall_.of(terrain_), domain_, fluid_, dfsph_);
 }
 
 size_t World::memoryBytes() const {
@@ -273,7 +277,8 @@ size_t World::memoryBytes() const {
          boundary_.x.capacity() * (sizeof(Vec3f) + 2 * sizeof(int) + sizeof(double) + sizeof(Eigen::Vector2f) + 1) +
          (sedimentWork_.conc.capacity() + sedimentWork_.hind.capacity()) * sizeof(float) +
          sedimentWork_.scale.capacity() * sizeof(SedimentWorkspace::Scales) +
-         sedimentWork_.delta.capacity() * sizeof(double) + sedimentWork_.tau.capacity() * sizeof(float) + flow_.bytes();
+         sedimentWork_.delta.capacity() * sizeof(double) + sedimentWork_.tau.capacity() * sizeof(float) + flow_.bytes() +
+         dfsph_.bytes();
 }
 
 }  // namespace scour

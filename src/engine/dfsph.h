@@ -1,0 +1,93 @@
+#pragma once
+// Divergence-free SPH (Bender & Koschier, SCA 2015 and TVCG 2017), `fluid.solver = dfsph`: the
+// pressure is not an equation of state of a compressed fluid but what makes the velocity field
+// keep the density at ρ0 (the density solve, before the drift) and divergence free (the
+// divergence solve, after the neighbor search). The step then follows the velocity, not the sound
+// speed (docs/model.md, "the implicit solver").
+//
+// Kernel. The solves need the density and its gradient to be one function's: the density is the
+// summation ρ_i = Σ_j m W_ij with Monaghan's cubic spline (support h), scaled so that the rest
+// lattice reads ρ0 exactly, and every gradient in the solves is that kernel's. (WCSPH's poly6
+// density with the spiky gradient is not a pair: a density solve on it does not converge to a
+// still tank.)
+//
+// Notation: κ_i = p_i / ρ_i [m²/s²], so that the velocity change of a pressure κ over Δt is the
+// symmetric SPH pressure force, Δv_i = −Δt (Σ_j m (κ_i/ρ_i + κ_j/ρ_j) ∇W_ij + κ_i/ρ_i g_w,i). The
+// factor α_i = ρ_i / (|G_i|² + Σ_j |m ∇W_ij|²), G_i = Σ_j m ∇W_ij + g_w,i the gradient of ρ_i,
+// turns a density error e into the κ that removes it when the neighbours' κ are alike:
+// κ_i = e α_i / Δt².
+//
+// Walls and terrain (forEachWall's planes) are continuous: a plane at distance d adds ρ0 Φ(d) to
+// the density, Φ the share of the kernel's integral beyond it, and its gradient g_w = −ρ0 A(d) n,
+// A = −dΦ/dd the kernel's integral over the plane; several planes combine as 1 − Π(1 − Φ_k). They
+// do not move, so they add v_i·g_w to Dρ_i/Dt, and a particle's own κ pushes it off them (the
+// boundary as a volume of pressure κ_j = 0, as SPlisHSPlasH's DFSPH treats its boundary
+// particles).
+//
+// Determinism: every sum over neighbours is one particle's, in its list's order; the mean errors
+// are summed in fixed blocks of particles and then over the blocks in order, so the iteration
+// counts and the state are the same at any thread count.
+
+#include <vector>
+
+#include "engine/fluid.h"
+#include "engine/heightfield.h"
+#include "engine/neighbors.h"
+#include "engine/sph.h"
+
+namespace scour {
+
+/// The solves' kernel and the walls' tables, for one h, Δs and particle mass.
+struct DfsphConstants {
+  DfsphConstants(const SphConstants& k, double spacing);
+  double h, mass, rho0;
+  float hm, w0, f0;  ///< h/2; the scaled kernel's W and F = dW/dr coefficients
+  /// Scaled cubic spline W(r) and (dW/dr)/r (0 at r = 0).
+  float W(float r) const;
+  float gradOverR(float r) const;
+  /// Φ(d) and A(d) = −dΦ/dd for a plane at signed distance d (negative beyond it).
+  double wallShare(double d) const { return lookup(phi_, d); }
+  double wallRate(double d) const { return lookup(rate_, d); }
+
+ private:
+  static constexpr int kTable = 2048;
+  std::vector<double> phi_, rate_;  // over d ∈ [−h, h]
+  double lookup(const std::vector<double>& t, double d) const;
+};
+
+/// Per-particle values of one step (not state: recomputed from the positions after a load).
+struct DfsphWorkspace {
+  std::vector<float> alpha;   ///< α_i [m⁵/kg]
+  std::vector<Vec3f> wall;    ///< the walls' share of ∇ρ_i, g_w [kg/m⁴]
+  std::vector<float> change;  ///< κ change of the current iteration
+  std::vector<float> error;   ///< the iteration's error per particle (for the ordered mean)
+  size_t bytes() const {
+    return (alpha.capacity() + change.capacity() + error.capacity()) * sizeof(float) + wall.capacity() * sizeof(Vec3f);
+  }
+};
+
+/// What one solve did: its iterations and the mean error it ended at (relative, as the limits).
+struct SolveReport {
+  int iterations = 0;
+  double error = 0;
+};
+
+/// The summation density ρ_i (into f.rho), α_i and the walls' share of ∇ρ_i, at the positions
+/// the neighbor lists were built on.
+void dfsphFactors(const DfsphConstants& k, const NeighborLists& nbrs, const Heightfield& hf, const Domain& dom,
+                  Fluid& f, DfsphWorkspace& w);
+
+/// The density solve: starts from the last step's κ = p/ρ where the water is compressed (warm
+/// start), then corrects the velocities until the density predicted for x + Δt v has a mean
+/// compression of at most `maxError` (at least 2 and at most `maxIterations` corrections). Only
+/// compression is corrected, so κ ≥ 0. Leaves p = κ ρ, the pressure that did it.
+SolveReport solveDensity(const DfsphConstants& k, const NeighborLists& nbrs, double dt, double maxError,
+                         int maxIterations, Fluid& f, DfsphWorkspace& w);
+
+/// The divergence solve: corrects the velocities until the mean compression rate times Δt is at
+/// most `maxError` (at least 1 correction). Only compression is corrected, and not where ρ_i < ρ0
+/// (a free surface, where the kernel sum is short of neighbours).
+SolveReport solveDivergence(const DfsphConstants& k, const NeighborLists& nbrs, double dt, double maxError,
+                            int maxIterations, Fluid& f, DfsphWorkspace& w);
+
+}  // namespace scour
