@@ -217,7 +217,23 @@ for k in ["particles", "threads", "steps", "seconds_per_step", "table1", "partic
 assert b["threads"] == 1 and b["steps"] == 3
 assert "total" in b["seconds_per_step"] and set(b["table1"]) == {"sph", "erosion", "boundary"}
 assert b["particle_steps_per_second_per_core"] > 0
+# Wall time per simulated second is the steps' wall time over the time they simulated.
+assert b["solver"] == "wcsph" and b["density_iterations_per_step"] == 0
+assert abs(b["wall_seconds_per_simulated_second"] * b["mean_dt"] * 3 - 3 * b["seconds_per_step"]["total"]) \
+    < 0.5 * 3 * b["seconds_per_step"]["total"], b
 print("bench json ok")
+PY
+# Under DFSPH the bench reports the solves' iterations per step and steps longer than WCSPH's.
+"$scour" bench dambreak --steps 3 --warmup 1 --threads 1 --json --set fluid.solver=dfsph > "$tmp/bench_df.json"
+python3 - "$tmp/bench.json" "$tmp/bench_df.json" <<'PY'
+import json, sys
+w, d = (json.load(open(p)) for p in sys.argv[1:3])
+assert d["solver"] == "dfsph", d
+assert d["density_iterations_per_step"] >= 2 and d["divergence_iterations_per_step"] >= 1, d
+assert d["mean_dt"] > 2 * w["mean_dt"], (d["mean_dt"], w["mean_dt"])
+assert "pressure_solve" in d["seconds_per_step"] and "divergence_solve" in d["seconds_per_step"]
+print("bench dfsph: %.1f density, %.1f divergence iterations per step; step %.2f ms against %.3f ms"
+      % (d["density_iterations_per_step"], d["divergence_iterations_per_step"], 1e3 * d["mean_dt"], 1e3 * w["mean_dt"]))
 PY
 # Same run at 1 and 2 threads: same state hash.
 "$scour" run dambreak --headless --steps 30 --threads 1 --out "$tmp/t1" >/dev/null
