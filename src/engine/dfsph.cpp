@@ -112,30 +112,30 @@ double orderedSum(const std::vector<float>& e) {
 }
 
 // Dρ_i/Dt = Σ_j m (v_i − v_j)·∇W_ij + v_i·g_w (the walls at rest).
-float densityRate(const DfsphConstants& k, const NeighborLists& nbrs, const Fluid& f, const DfsphWorkspace& w,
-                  size_t i) {
-  const float m = float(k.mass);
+float densityRate(const NeighborLists& nbrs, const Fluid& f, const DfsphWorkspace& w, size_t i) {
+  const uint32_t* js = nbrs.begin(i);
+  const Vec3f* g = w.grad.data() + w.first[i];
   const Vec3f vi = f.v[i];
   float rate = 0.0f;
-  forEachNeighbor(nbrs, f.x, f.x, i, [&](uint32_t j, const Vec3f& xij, float r) {
-    rate += m * k.gradOverR(r) * (vi - f.v[j]).dot(xij);
-  });
+  for (uint32_t c = 0; c < nbrs.count(i); ++c) rate += (vi - f.v[js[c]]).dot(g[c]);
   return rate + vi.dot(w.wall[i]);
 }
 
-// v_i −= Δt (Σ_j m (c_i/ρ_i + c_j/ρ_j) ∇W_ij + c_i/ρ_i g_w): the velocity change of the κ change c.
-// Reads only c, ρ and x, so each particle's update is its own.
-void correct(const DfsphConstants& k, const NeighborLists& nbrs, double dt, const std::vector<float>& c, Fluid& f,
-             const DfsphWorkspace& w) {
+// v_i −= Δt (Σ_j m (c_i/ρ_i + c_j/ρ_j) ∇W_ij + 2 c_i/ρ_i g_w): the velocity change of the κ change
+// c. Reads only c and ρ, so each particle's update is its own.
+void correct(const NeighborLists& nbrs, double dt, const std::vector<float>& c, Fluid& f, const DfsphWorkspace& w) {
   const size_t n = f.size();
-  const float m = float(k.mass), step = float(dt);
+  const float step = float(dt);
 #pragma omp parallel for schedule(static)
   for (size_t i = 0; i < n; ++i) {
     const float ci = c[i] / f.rho[i];
     Vec3f dv = (kWallMirror * ci) * w.wall[i];
-    forEachNeighbor(nbrs, f.x, f.x, i, [&](uint32_t j, const Vec3f& xij, float r) {
-      dv += (m * (ci + c[j] / f.rho[j]) * k.gradOverR(r)) * xij;
-    });
+    const uint32_t* js = nbrs.begin(i);
+    const Vec3f* g = w.grad.data() + w.first[i];
+    for (uint32_t q = 0; q < nbrs.count(i); ++q) {
+      const uint32_t j = js[q];
+      dv += (ci + c[j] / f.rho[j]) * g[q];
+    }
     f.v[i] -= step * dv;
   }
 }
@@ -147,13 +147,19 @@ void dfsphFactors(const DfsphConstants& k, const NeighborLists& nbrs, const Heig
   const size_t n = f.size();
   w.alpha.resize(n), w.wall.resize(n);
   const float m = float(k.mass);
+  w.first.resize(n + 1);
+  w.first[0] = 0;
+  for (size_t i = 0; i < n; ++i) w.first[i + 1] = w.first[i] + nbrs.count(i);
+  w.grad.resize(w.first[n]);
 #pragma omp parallel for schedule(static)
   for (size_t i = 0; i < n; ++i) {
     float rho = m * k.W(0.0f), g2 = 0.0f;
     Vec3f g = Vec3f::Zero();
+    Vec3f* pair = w.grad.data() + w.first[i];
     forEachNeighbor(nbrs, f.x, f.x, i, [&](uint32_t, const Vec3f& xij, float r) {
       rho += m * k.W(r);  // a twin at r = 0 adds W(0) and no gradient
       const Vec3f grad = (m * k.gradOverR(r)) * xij;
+      *pair++ = grad;
       g += grad;
       g2 += grad.squaredNorm();
     });
@@ -196,16 +202,16 @@ SolveReport solveDensity(const DfsphConstants& k, const NeighborLists& nbrs, dou
   // Warm start: last step's pressure where the water is compressed now.
 #pragma omp parallel for schedule(static)
   for (size_t i = 0; i < n; ++i) {
-    const bool compressed = f.rho[i] + step * densityRate(k, nbrs, f, w, i) > rho0;
+    const bool compressed = f.rho[i] + step * densityRate(nbrs, f, w, i) > rho0;
     w.change[i] = compressed ? kWarmShare * std::max(f.p[i], 0.0f) / f.rho[i] : 0.0f;
   }
   kappa = w.change;
-  correct(k, nbrs, dt, w.change, f, w);
+  correct(nbrs, dt, w.change, f, w);
   for (;;) {
     // The density x + Δt v would have: its compression is the error; the κ change removes it.
 #pragma omp parallel for schedule(static)
     for (size_t i = 0; i < n; ++i) {
-      const float predicted = f.rho[i] + step * densityRate(k, nbrs, f, w, i) - rho0;
+      const float predicted = f.rho[i] + step * densityRate(nbrs, f, w, i) - rho0;
       const float e = std::max(predicted, 0.0f);
       w.error[i] = e;
       w.change[i] = std::max(kappa[i] + predicted * w.alpha[i] * perDt2, 0.0f) - kappa[i];
@@ -213,7 +219,7 @@ SolveReport solveDensity(const DfsphConstants& k, const NeighborLists& nbrs, dou
     report.error = orderedSum(w.error) / double(n) / k.rho0;
     if ((report.error <= maxError && report.iterations >= kMinDensityIterations) || report.iterations >= maxIterations)
       break;
-    correct(k, nbrs, dt, w.change, f, w);
+    correct(nbrs, dt, w.change, f, w);
 #pragma omp parallel for schedule(static)
     for (size_t i = 0; i < n; ++i) kappa[i] += w.change[i];
     ++report.iterations;
@@ -233,7 +239,7 @@ SolveReport solveDivergence(const DfsphConstants& k, const NeighborLists& nbrs, 
   for (;;) {
 #pragma omp parallel for schedule(static)
     for (size_t i = 0; i < n; ++i) {
-      const float rate = f.rho[i] < rho0 ? 0.0f : std::max(densityRate(k, nbrs, f, w, i), 0.0f);
+      const float rate = f.rho[i] < rho0 ? 0.0f : std::max(densityRate(nbrs, f, w, i), 0.0f);
       w.error[i] = step * rate;
       w.change[i] = rate * w.alpha[i] * perDt;
     }
@@ -241,7 +247,7 @@ SolveReport solveDivergence(const DfsphConstants& k, const NeighborLists& nbrs, 
     if ((report.error <= maxError && report.iterations >= kMinDivergenceIterations) ||
         report.iterations >= maxIterations)
       break;
-    correct(k, nbrs, dt, w.change, f, w);
+    correct(nbrs, dt, w.change, f, w);
     ++report.iterations;
   }
   return report;

@@ -61,8 +61,13 @@ struct DfsphWorkspace {
   std::vector<Vec3f> wall;    ///< the walls' share of ∇ρ_i, g_w [kg/m⁴]
   std::vector<float> change;  ///< κ change of the current iteration
   std::vector<float> error;   ///< the iteration's error per particle (for the ordered mean)
+  /// m ∇W_ij of every pair of the fluid lists, in list order, computed once a step: the solves'
+  /// passes over the pairs then need no square root or kernel. Particle i's start in it: first[i].
+  std::vector<Vec3f> grad;
+  std::vector<size_t> first;
   size_t bytes() const {
-    return (alpha.capacity() + change.capacity() + error.capacity()) * sizeof(float) + wall.capacity() * sizeof(Vec3f);
+    return (alpha.capacity() + change.capacity() + error.capacity()) * sizeof(float) +
+           (wall.capacity() + grad.capacity()) * sizeof(Vec3f) + first.capacity() * sizeof(size_t);
   }
 };
 
