@@ -91,6 +91,10 @@ constexpr double kRelaxation = 0.5;
 constexpr float kWarmShare = 0.5f;
 // The walls mirror the particle's κ (κ_wall = κ_i), as WCSPH's wall pressure does: with κ_wall = 0
 // (SPlisHSPlasH's choice) the bottom layer of a still tank carries 1.7 × its hydrostatic pressure.
+// The solves' linearised density counts the wall's share of Dρ_i/Dt with the same factor, so the
+// force stays the constraint's gradient and the system symmetric: with the factor in the force
+// alone the Jacobi iteration diverged where walls dominate (`scour stress`, deep-column: more
+// iterations, more energy). At rest (v = 0) the factor changes nothing.
 constexpr float kWallMirror = 2.0f;
 constexpr int kMinDensityIterations = 2;
 constexpr int kMinDivergenceIterations = 1;
@@ -118,7 +122,7 @@ float densityRate(const NeighborLists& nbrs, const Fluid& f, const DfsphWorkspac
   const Vec3f vi = f.v[i];
   float rate = 0.0f;
   for (uint32_t c = 0; c < nbrs.count(i); ++c) rate += (vi - f.v[js[c]]).dot(g[c]);
-  return rate + vi.dot(w.wall[i]);
+  return rate + kWallMirror * vi.dot(w.wall[i]);
 }
 
 // v_i −= Δt (Σ_j m (c_i/ρ_i + c_j/ρ_j) ∇W_ij + 2 c_i/ρ_i g_w): the velocity change of the κ change
@@ -185,8 +189,8 @@ void dfsphFactors(const DfsphConstants& k, const NeighborLists& nbrs, const Heig
     rho += float(k.rho0 * (1.0 - all));
     f.rho[i] = rho;
     w.wall[i] = gw.cast<float>();
-    const Vec3f G = g + w.wall[i], P = g + kWallMirror * w.wall[i];
-    const double denom = std::max(double(P.dot(G)), 0.0) + double(g2);
+    const Vec3f P = g + kWallMirror * w.wall[i];
+    const double denom = double(P.squaredNorm()) + double(g2);
     w.alpha[i] = denom > 1e-9 * double(rho) * double(rho) / (k.h * k.h) ? float(double(rho) / denom) : 0.0f;
   }
 }

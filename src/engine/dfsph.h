@@ -12,17 +12,16 @@
 // still tank.)
 //
 // Notation: κ_i = p_i / ρ_i [m²/s²], so that the velocity change of a pressure κ over Δt is the
-// symmetric SPH pressure force, Δv_i = −Δt (Σ_j m (κ_i/ρ_i + κ_j/ρ_j) ∇W_ij + κ_i/ρ_i g_w,i). The
-// factor α_i = ρ_i / (|G_i|² + Σ_j |m ∇W_ij|²), G_i = Σ_j m ∇W_ij + g_w,i the gradient of ρ_i,
-// turns a density error e into the κ that removes it when the neighbours' κ are alike:
-// κ_i = e α_i / Δt².
+// symmetric SPH pressure force, Δv_i = −Δt (Σ_j m (κ_i/ρ_i + κ_j/ρ_j) ∇W_ij + 2 κ_i/ρ_i g_w,i): the
+// walls mirror the particle's own κ, as WCSPH's wall pressure does. The factor
+// α_i = ρ_i / (|G_i|² + Σ_j |m ∇W_ij|²), G_i = Σ_j m ∇W_ij + 2 g_w,i, turns a density error e into
+// the κ that removes it when the neighbours' κ are alike: κ_i = e α_i / Δt².
 //
-// Walls and terrain (forEachWall's planes) are continuous: a plane at distance d adds ρ0 Φ(d) to
-// the density, Φ the share of the kernel's integral beyond it, and its gradient g_w = −ρ0 A(d) n,
-// A = −dΦ/dd the kernel's integral over the plane; several planes combine as 1 − Π(1 − Φ_k). They
-// do not move, so they add v_i·g_w to Dρ_i/Dt, and a particle's own κ pushes it off them (the
-// boundary as a volume of pressure κ_j = 0, as SPlisHSPlasH's DFSPH treats its boundary
-// particles).
+// Walls and terrain (forEachWall's planes): a plane at distance d adds ρ0 Φ(d) to the density and
+// g_w = ρ0 Φ'(d) n to its gradient, Φ fitted to the rest lattice (dfsph.cpp); several planes combine
+// as 1 − Π(1 − Φ_k). They do not move. In the solves' linearised density a wall's share of Dρ_i/Dt
+// counts twice, 2 v_i·g_w, as its push does: the force is then the constraint's gradient and the
+// system symmetric (docs/model.md).
 //
 // Determinism: every sum over neighbours is one particle's, in its list's order; the mean errors
 // are summed in fixed blocks of particles and then over the blocks in order, so the iteration
