@@ -20,7 +20,7 @@ DfsphConstants::DfsphConstants(const SphConstants& k, double spacing) : h(k.h), 
   // The walls' share Φ(d) and its slope, from the rest lattice (dfsph.h): a particle resting on
   // the lattice at d = (m + ½) Δs from a wall misses the layers at offsets k Δs, k > m, beyond it;
   // Φ there is their share of the lattice sum, and dΦ/dd their Σ m ∇W along the normal over ρ0,
-  // so that the particle reads ρ0 and G_i = 0, as in the bulk. Between these knots Φ is the cubic
+  // so that the particle reads ρ0 and ∇ρ_i = 0, as in the bulk. Between these knots Φ is the cubic
   // that matches both (Hermite), so the density and the gradient stay one function's; Φ = 0 with
   // slope 0 at d = h, and Φ(−d) = 1 − Φ(d).
   const int layers = K + 1;

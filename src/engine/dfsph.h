@@ -81,10 +81,11 @@ struct SolveReport {
 void dfsphFactors(const DfsphConstants& k, const NeighborLists& nbrs, const Heightfield& hf, const Domain& dom,
                   Fluid& f, DfsphWorkspace& w);
 
-/// The density solve: starts from the last step's κ = p/ρ where the water is compressed (warm
-/// start), then corrects the velocities until the density predicted for x + Δt v has a mean
-/// compression of at most `maxError` (at least 2 and at most `maxIterations` corrections). Only
-/// compression is corrected, so κ ≥ 0. Leaves p = κ ρ, the pressure that did it.
+/// The density solve: starts from half of the last step's κ = p/ρ where the water is compressed
+/// (warm start), then corrects the velocities until the density predicted for x + Δt v has a mean
+/// compression of at most `maxError` (at least 2 and at most `maxIterations` corrections), by a
+/// projected Jacobi iteration: κ stays ≥ 0, and a particle that expands loses pressure. Leaves
+/// p = κ ρ, the pressure that did it.
 SolveReport solveDensity(const DfsphConstants& k, const NeighborLists& nbrs, double dt, double maxError,
                          int maxIterations, Fluid& f, DfsphWorkspace& w);
 
