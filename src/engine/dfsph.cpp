@@ -144,6 +144,26 @@ void correct(const NeighborLists& nbrs, double dt, const std::vector<float>& c, 
   }
 }
 
+// The Jacobi loop both solves share: `residual(i)` sets w.error[i] and w.change[i] for each
+// particle; while the mean error is above `maxError` (or fewer than `minIterations` corrections
+// ran), the change is applied to the velocities and `accept()` keeps it, up to `maxIterations`.
+template <class Residual, class Accept>
+SolveReport iterate(const DfsphConstants& k, const NeighborLists& nbrs, double dt, double maxError, int minIterations,
+                    int maxIterations, Fluid& f, DfsphWorkspace& w, Residual&& residual, Accept&& accept) {
+  const size_t n = f.size();
+  SolveReport report;
+  for (;;) {
+#pragma omp parallel for schedule(static)
+    for (size_t i = 0; i < n; ++i) residual(i);
+    report.error = orderedSum(w.error) / double(n) / k.rho0;
+    if ((report.error <= maxError && report.iterations >= minIterations) || report.iterations >= maxIterations)
+      return report;
+    correct(nbrs, dt, w.change, f, w);
+    accept();
+    ++report.iterations;
+  }
+}
+
 }  // namespace
 
 void dfsphFactors(const DfsphConstants& k, const NeighborLists& nbrs, const Heightfield& hf, const Domain& dom,
@@ -198,8 +218,7 @@ void dfsphFactors(const DfsphConstants& k, const NeighborLists& nbrs, const Heig
 SolveReport solveDensity(const DfsphConstants& k, const NeighborLists& nbrs, double dt, double maxError,
                          int maxIterations, Fluid& f, DfsphWorkspace& w) {
   const size_t n = f.size();
-  SolveReport report;
-  if (n == 0) return report;
+  if (n == 0) return {};
   w.change.resize(n), w.error.resize(n);
   std::vector<float>& kappa = f.p;  // κ = p/ρ during the solve
   const float rho0 = float(k.rho0), step = float(dt), perDt2 = float(kRelaxation / (dt * dt));
@@ -211,23 +230,18 @@ SolveReport solveDensity(const DfsphConstants& k, const NeighborLists& nbrs, dou
   }
   kappa = w.change;
   correct(nbrs, dt, w.change, f, w);
-  for (;;) {
-    // The density x + Δt v would have: its compression is the error; the κ change removes it.
+  // The density x + Δt v would have: its compression is the error; the κ change removes it.
+  const SolveReport report = iterate(
+      k, nbrs, dt, maxError, kMinDensityIterations, maxIterations, f, w,
+      [&](size_t i) {
+        const float predicted = f.rho[i] + step * densityRate(nbrs, f, w, i) - rho0;
+        w.error[i] = std::max(predicted, 0.0f);
+        w.change[i] = std::max(kappa[i] + predicted * w.alpha[i] * perDt2, 0.0f) - kappa[i];
+      },
+      [&] {
 #pragma omp parallel for schedule(static)
-    for (size_t i = 0; i < n; ++i) {
-      const float predicted = f.rho[i] + step * densityRate(nbrs, f, w, i) - rho0;
-      const float e = std::max(predicted, 0.0f);
-      w.error[i] = e;
-      w.change[i] = std::max(kappa[i] + predicted * w.alpha[i] * perDt2, 0.0f) - kappa[i];
-    }
-    report.error = orderedSum(w.error) / double(n) / k.rho0;
-    if ((report.error <= maxError && report.iterations >= kMinDensityIterations) || report.iterations >= maxIterations)
-      break;
-    correct(nbrs, dt, w.change, f, w);
-#pragma omp parallel for schedule(static)
-    for (size_t i = 0; i < n; ++i) kappa[i] += w.change[i];
-    ++report.iterations;
-  }
+        for (size_t i = 0; i < n; ++i) kappa[i] += w.change[i];
+      });
 #pragma omp parallel for schedule(static)
   for (size_t i = 0; i < n; ++i) f.p[i] = kappa[i] * f.rho[i];
   return report;
@@ -236,25 +250,17 @@ SolveReport solveDensity(const DfsphConstants& k, const NeighborLists& nbrs, dou
 SolveReport solveDivergence(const DfsphConstants& k, const NeighborLists& nbrs, double dt, double maxError,
                             int maxIterations, Fluid& f, DfsphWorkspace& w) {
   const size_t n = f.size();
-  SolveReport report;
-  if (n == 0) return report;
+  if (n == 0) return {};
   w.change.resize(n), w.error.resize(n);
   const float rho0 = float(k.rho0), step = float(dt), perDt = float(kRelaxation / dt);
-  for (;;) {
-#pragma omp parallel for schedule(static)
-    for (size_t i = 0; i < n; ++i) {
-      const float rate = f.rho[i] < rho0 ? 0.0f : std::max(densityRate(nbrs, f, w, i), 0.0f);
-      w.error[i] = step * rate;
-      w.change[i] = rate * w.alpha[i] * perDt;
-    }
-    report.error = orderedSum(w.error) / double(n) / k.rho0;
-    if ((report.error <= maxError && report.iterations >= kMinDivergenceIterations) ||
-        report.iterations >= maxIterations)
-      break;
-    correct(nbrs, dt, w.change, f, w);
-    ++report.iterations;
-  }
-  return report;
+  return iterate(
+      k, nbrs, dt, maxError, kMinDivergenceIterations, maxIterations, f, w,
+      [&](size_t i) {
+        const float rate = f.rho[i] < rho0 ? 0.0f : std::max(densityRate(nbrs, f, w, i), 0.0f);
+        w.error[i] = step * rate;
+        w.change[i] = rate * w.alpha[i] * perDt;
+      },
+      [] {});
 }
 
 }  // namespace scour
