@@ -153,6 +153,10 @@ TEST_CASE("DFSPH: the same at 1 and 2 threads, a resumed state steps on bit for 
   CHECK(s.suspended > 0);
   CHECK(s.relativeError() < 1e-12);
   CHECK(run(1, 200)->stateHash() == two->stateHash());
+  // The pressure means another thing to each solver: switching is a reset, not a live edit.
+  SimParams other = two->params();
+  other.solver = FluidSolver::kWcsph;
+  CHECK_THROWS_WITH(two->setParams(other), "fluid.solver changes with a reset");
   // The warm start (last step's pressure) travels with the state: a resumed run is the same run.
   std::stringstream state;
   two->saveState(state);
