@@ -7,6 +7,7 @@
 #include <tuple>
 #include <cstdio>
 #include <iostream>
+#include <sstream>
 
 #include "app/app.h"
 #include "app/worker.h"
@@ -48,6 +49,7 @@ struct BenchOptions {
   double seconds = 5;
   std::string size;  ///< empty: 960x540 for --render, the window's 1280x720 for --with-window
   std::vector<std::string> sets;
+  std::vector<std::string> sideBySide;  ///< settings to compare, each "key=value ..." on top of sets
 };
 
 double median(std::vector<double> v) {
@@ -317,69 +319,179 @@ int benchWindow(const BenchOptions& o, const Scene& scene) {
   return kExitOk;
 }
 
-// One scene's step: the median seconds of each pass and Table 1 group over o.steps steps after
-// o.warmup, the speed per core and the memory per particle. On a failed step: *code, and null.
-json measureSteps(const BenchOptions& o, const std::string& name, const Scene& scene, int* code) {
-  std::unique_ptr<World> world;
+// What the timed steps of one world add up to: per pass and Table 1 group, the totals, the
+// water's time they covered and the solves' iterations.
+struct StepTally {
+  std::vector<std::vector<double>> perPass = std::vector<std::vector<double>>(size_t(Pass::kCount));
+  std::vector<double> total, groups[4];
+  double particles = 0;
+  // Wall seconds per simulated second (all the timed steps, not a median: a solver that takes
+  // fewer, longer steps is judged on the water's time), and the solves' iterations.
+  double wall = 0, simulated = 0, densityError = 0;
+  long steps = 0, densityIterations = 0, divergenceIterations = 0;
+
+  void add(const StepRecord& r, const World& w) {
+    total.push_back(r.seconds);
+    for (size_t p = 0; p < perPass.size(); ++p) perPass[p].push_back(r.passSeconds[p]);
+    for (int k = 0; k < 4; ++k) groups[k].push_back(r.groupSeconds[size_t(k)]);
+    particles += double(w.fluid().size());
+    wall += r.seconds, simulated += r.stats.dt, densityError += r.stats.density_error;
+    densityIterations += r.stats.density_iterations, divergenceIterations += r.stats.divergence_iterations;
+    ++steps;
+  }
+
+  // The medians of each pass and group, the speed per core and the memory per particle.
+  json report(const std::string& name, const Scene& scene, const World& world, bool erosion) const {
+    const int threads = omp_get_max_threads();
+    const double n = double(std::max(steps, 1L));
+    const double meanParticles = particles / n;
+    const double tTotal = median(total);
+    const double tSph = median(groups[int(Table1Group::kSph)]);
+    json j;
+    j["scene"] = name;
+    j["particles"] = long(meanParticles + 0.5);
+    j["spacing"] = scene.desc.params.spacing;  // Δs
+    j["terrain_cell"] = std::max(scene.desc.terrain.dx(), scene.desc.terrain.dz());
+    j["boundary_particles"] = world.boundary().size();
+    j["erosion_effects"] = erosion || scene.desc.effects.erosion;
+    j["threads"] = threads;
+    j["steps"] = steps;
+    json sps = {{"total", tTotal}};
+    for (size_t p = 0; p < perPass.size(); ++p)
+      if (world.passCalls()[p] > 0) sps[passName(Pass(p))] = median(perPass[p]);
+    j["seconds_per_step"] = sps;
+    j["table1"] = {{"sph", tSph},
+                   {"erosion", median(groups[int(Table1Group::kErosion)])},
+                   {"boundary", median(groups[int(Table1Group::kBoundary)])}};
+    j["particle_steps_per_second_per_core"] = meanParticles / tTotal / threads;
+    j["sph_particle_steps_per_second_per_core"] = meanParticles / tSph / threads;
+    j["memory_bytes_per_particle"] = double(world.memoryBytes()) / meanParticles;
+    j["neighbors_per_particle"] =
+        double(world.neighbors().totalPairs()) / double(std::max<size_t>(1, world.fluid().size()));
+    j["ratio"] = (double(j["table1"]["erosion"]) + double(j["table1"]["boundary"])) / std::max(tSph, 1e-300);
+    j["solver"] = scene.desc.params.solver == FluidSolver::kDfsph ? "dfsph" : "wcsph";
+    j["simulated_seconds"] = simulated;
+    j["wall_seconds"] = wall;
+    j["mean_dt"] = simulated / n;
+    j["wall_seconds_per_simulated_second"] = wall / std::max(simulated, 1e-300);
+    j["density_iterations_per_step"] = double(densityIterations) / n;
+    j["divergence_iterations_per_step"] = double(divergenceIterations) / n;
+    j["mean_density_error"] = densityError / n;
+    return j;
+  }
+};
+
+std::unique_ptr<World> makeWorld(const std::string& name, const Scene& scene) {
   try {
-    world = std::make_unique<World>(scene.desc);
+    return std::make_unique<World>(scene.desc);
   } catch (const std::invalid_argument& e) {
     throw InputError(std::string("scene '") + name + "': " + e.what());
   }
-  const int threads = omp_get_max_threads();
-  constexpr size_t kPasses = size_t(Pass::kCount);
-  std::vector<std::vector<double>> perPass(kPasses);
-  std::vector<double> total, groups[4];
-  size_t particles = 0;
-  // Wall seconds per simulated second (all the measured steps, not a median: a solver that takes
-  // fewer, longer steps is judged on the water's time), and the solves' iterations per step.
-  double wall = 0, simulated = 0;
-  long densityIterations = 0, divergenceIterations = 0;
+}
+
+// One scene's step: the median seconds of each pass and Table 1 group over o.steps steps after
+// o.warmup, the speed per core and the memory per particle. On a failed step: *code, and null.
+json measureSteps(const BenchOptions& o, const std::string& name, const Scene& scene, int* code) {
+  std::unique_ptr<World> world = makeWorld(name, scene);
+  StepTally tally;
   RunEnd end = runSteps(*world, o.warmup);
-  if (end.ok())
-    end = runSteps(*world, o.steps, [&](const StepRecord& r) {
-      total.push_back(r.seconds);
-      for (size_t p = 0; p < kPasses; ++p) perPass[p].push_back(r.passSeconds[p]);
-      for (int k = 0; k < 4; ++k) groups[k].push_back(r.groupSeconds[size_t(k)]);
-      particles += world->fluid().size();
-      wall += r.seconds, simulated += r.stats.dt;
-      densityIterations += r.stats.density_iterations, divergenceIterations += r.stats.divergence_iterations;
-    });
+  if (end.ok()) end = runSteps(*world, o.steps, [&](const StepRecord& r) { tally.add(r, *world); });
   if (!end.ok()) {
     *code = stepFailure(end, name);
     return {};
   }
-  const double meanParticles = double(particles) / double(o.steps);
-  const double tTotal = median(total);
-  const double tSph = median(groups[int(Table1Group::kSph)]);
-  json j;
-  j["scene"] = name;
-  j["particles"] = long(meanParticles + 0.5);
-  j["spacing"] = scene.desc.params.spacing;  // Δs
-  j["terrain_cell"] = std::max(scene.desc.terrain.dx(), scene.desc.terrain.dz());
-  j["boundary_particles"] = world->boundary().size();
-  j["erosion_effects"] = o.erosion || scene.desc.effects.erosion;
-  j["threads"] = threads;
-  j["steps"] = o.steps;
-  json sps = {{"total", tTotal}};
-  for (size_t p = 0; p < kPasses; ++p)
-    if (world->passCalls()[p] > 0) sps[passName(Pass(p))] = median(perPass[p]);
-  j["seconds_per_step"] = sps;
-  j["table1"] = {{"sph", tSph},
-                 {"erosion", median(groups[int(Table1Group::kErosion)])},
-                 {"boundary", median(groups[int(Table1Group::kBoundary)])}};
-  j["particle_steps_per_second_per_core"] = meanParticles / tTotal / threads;
-  j["sph_particle_steps_per_second_per_core"] = meanParticles / tSph / threads;
-  j["memory_bytes_per_particle"] = double(world->memoryBytes()) / meanParticles;
-  j["neighbors_per_particle"] =
-      double(world->neighbors().totalPairs()) / double(std::max<size_t>(1, world->fluid().size()));
-  j["ratio"] = (double(j["table1"]["erosion"]) + double(j["table1"]["boundary"])) / std::max(tSph, 1e-300);
-  j["solver"] = scene.desc.params.solver == FluidSolver::kDfsph ? "dfsph" : "wcsph";
-  j["mean_dt"] = simulated / double(o.steps);
-  j["wall_seconds_per_simulated_second"] = wall / std::max(simulated, 1e-300);
-  j["density_iterations_per_step"] = double(densityIterations) / double(o.steps);
-  j["divergence_iterations_per_step"] = double(divergenceIterations) / double(o.steps);
-  return j;
+  return tally.report(name, scene, *world, o.erosion);
+}
+
+// The same scene under two or more settings (`--side-by-side "key=value ..."`, each on top of
+// --set), stepped in turn in one process so that the machine's drift hits them alike, over the
+// same stretch of the water's time: each takes o.warmup steps and catches up with the furthest,
+// then the first takes o.steps timed steps while every other one, always stepping whichever is
+// behind, follows it to the same simulated time. What counts is wall seconds per simulated
+// second: a solver that takes fewer, longer steps is judged on the water's time.
+int benchSideBySide(const BenchOptions& o) {
+  struct Config {
+    std::string label;
+    Scene scene;
+    std::unique_ptr<World> world;
+    StepTally tally;
+  };
+  if (o.sideBySide.size() < 2)
+    throw InputError("--side-by-side: give at least two settings to compare (one given)");
+  std::vector<Config> configs;
+  for (const std::string& spec : o.sideBySide) {
+    std::vector<std::string> sets = o.sets;
+    std::istringstream words(spec);
+    for (std::string w; words >> w;) {
+      // Each word is refused under its own flag, not as a --set.
+      const size_t eq = w.find('=');
+      if (eq == std::string::npos) throw InputError("--side-by-side: '" + w + "' has no key=value");
+      SimParams check;
+      const std::string err = setParam(check, w.substr(0, eq), w.substr(eq + 1));
+      if (!err.empty()) throw InputError("--side-by-side '" + spec + "': " + err);
+      sets.push_back(w);
+    }
+    Config c{spec, loadScene(o.scene, o.scale, o.particles, sets), nullptr, {}};
+    c.world = makeWorld(o.scene, c.scene);
+    configs.push_back(std::move(c));
+  }
+  RunEnd end;
+  auto step = [&](Config& c, bool timed) {
+    end = runSteps(*c.world, 1, [&](const StepRecord& r) {
+      if (timed) c.tally.add(r, *c.world);
+    });
+    return end.ok();
+  };
+  auto failed = [&](const Config& c) { return stepFailure(end, o.scene + " (" + c.label + ")"); };
+  for (long s = 0; s < o.warmup; ++s)
+    for (Config& c : configs)
+      if (!step(c, false)) return failed(c);
+  double start = 0;
+  for (const Config& c : configs) start = std::max(start, c.world->time());
+  for (Config& c : configs)
+    while (c.world->time() < start)
+      if (!step(c, false)) return failed(c);
+  // The first takes o.steps timed steps; the others follow it through the same water's time.
+  auto done = [&](size_t k) {
+    const bool firstDone = configs[0].tally.steps >= o.steps;
+    return k == 0 ? firstDone : firstDone && configs[k].world->time() >= configs[0].world->time();
+  };
+  for (;;) {
+    size_t next = configs.size();
+    for (size_t k = 0; k < configs.size(); ++k)
+      if (!done(k) && (next == configs.size() || configs[k].world->time() < configs[next].world->time()))
+        next = k;
+    if (next == configs.size()) break;
+    if (!step(configs[next], true)) return failed(configs[next]);
+  }
+  json rows = json::array();
+  const double base = configs[0].tally.wall / std::max(configs[0].tally.simulated, 1e-300);
+  for (const Config& c : configs) {
+    json j = c.tally.report(o.scene, c.scene, *c.world, false);
+    j["settings"] = c.label;
+    j["against_first"] = double(j["wall_seconds_per_simulated_second"]) / base;
+    rows.push_back(std::move(j));
+  }
+  if (o.json) {
+    std::cout << json{{"scene", o.scene}, {"scale", o.scale}, {"threads", omp_get_max_threads()},
+                      {"warmup", o.warmup}, {"rows", rows}}.dump(2) << "\n";
+    return kExitOk;
+  }
+  std::printf("%s side by side: %d threads, stepped in turn over the same %.4g simulated seconds "
+              "(after %ld warm-up steps each)\n",
+              o.scene.c_str(), omp_get_max_threads(), double(rows[0]["simulated_seconds"]), o.warmup);
+  int width = 8;
+  for (const Config& c : configs) width = std::max(width, int(c.label.size()));
+  std::printf("%-*s %9s %6s %8s %8s %12s %9s %8s %8s %9s\n", width, "settings", "particles", "steps", "dt ms",
+              "wall s", "wall s/sim s", "vs first", "dens it", "div it", "dens err");
+  for (const json& r : rows)
+    std::printf("%-*s %9ld %6ld %8.3f %8.2f %12.2f %9.2f %8.1f %8.1f %9.2e\n", width,
+                std::string(r["settings"]).c_str(), long(r["particles"]), long(r["steps"]),
+                1e3 * double(r["mean_dt"]), double(r["wall_seconds"]),
+                double(r["wall_seconds_per_simulated_second"]), double(r["against_first"]),
+                double(r["density_iterations_per_step"]), double(r["divergence_iterations_per_step"]),
+                double(r["mean_density_error"]));
+  return kExitOk;
 }
 
 // The paper's three presets at the scales users run (the window: 0.1–0.3), each measured
@@ -449,6 +561,7 @@ int bench(const BenchOptions& o) {
   setThreads(o.threads);
   if (o.paper) return benchPaper(o);
   if (o.presets) return benchPresets(o);
+  if (!o.sideBySide.empty()) return benchSideBySide(o);
   if (o.withWindow) return benchWindow(o, loadScene(o.scene, o.scale, o.particles, o.sets));
   Scene scene = loadScene(o.scene, o.scale, o.particles, o.sets);
   if (o.ablation) return ablation(o, scene);
@@ -517,6 +630,13 @@ Command addBenchCommand(CLI::App& app) {
   c->add_option("--scales", o->scales, "Scales for --presets (default 0.1 0.3 1)")->check(kPositive)->delimiter(',');
   c->add_option("--repeat", o->repeat, "Runs of each --presets scene, in turn; the medians are reported")
       ->check(kPositive);
+  c->add_option("--side-by-side", o->sideBySide,
+                 "Settings to compare in one run, each 'key=value ...' on top of --set (repeat, at least "
+                 "twice): stepped in turn over the same simulated time, wall seconds per simulated second")
+      ->each([](const std::string& v) {
+        if (v.find('=') == std::string::npos)
+          throw CLI::ValidationError("'" + v + "' has no key=value");
+      });
   c->add_flag("--ablation", o->ablation,
               "Compare all effects, erosion off and SPH only, stepped in turn");
   return [o] { return bench(*o); };

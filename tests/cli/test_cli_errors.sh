@@ -41,6 +41,9 @@ expect "--out" run dambreak --headless --steps 5
 expect "did you mean 'fluid.viscosity'" run dambreak --headless --steps 5 --set fluid.viscosty=1 --out "$tmp/h"
 expect "outside the valid range" run dambreak --headless --steps 5 --set fluid.spacing=-1 --out "$tmp/i"
 expect "--particles" bench block --particles -3
+expect "--side-by-side: give at least two settings to compare (one given)" bench dambreak --steps 1 --side-by-side fluid.solver=dfsph
+expect "--side-by-side: 'fluid.solver' has no key=value" bench dambreak --steps 1 --side-by-side fluid.solver --side-by-side fluid.solver=dfsph
+expect "--side-by-side 'fluid.solver=foo': parameter 'fluid.solver': expected one of wcsph, dfsph, found 'foo'" bench dambreak --steps 1 --side-by-side fluid.solver=foo --side-by-side fluid.solver=dfsph
 expect "--scale" run dambreak --headless --steps 5 --scale 0 --out "$tmp/j"
 expect "cannot create directory" run dambreak --headless --steps 5 --out /proc/nope/x
 expect "unknown stress scene 'nope' (valid: cfl-limit, cliffs" stress --scene nope --out "$tmp/k"

@@ -235,6 +235,23 @@ assert "pressure_solve" in d["seconds_per_step"] and "divergence_solve" in d["se
 print("bench dfsph: %.1f density, %.1f divergence iterations per step; step %.2f ms against %.3f ms"
       % (d["density_iterations_per_step"], d["divergence_iterations_per_step"], 1e3 * d["mean_dt"], 1e3 * w["mean_dt"]))
 PY
+# bench --side-by-side: the settings stepped in turn over the same water's time, each its own
+# solver's row; the others follow the first to its simulated time (within one of their steps).
+"$scour" bench dambreak --steps 30 --warmup 1 --threads 1 --json --side-by-side fluid.solver=wcsph \
+  --side-by-side "fluid.solver=dfsph fluid.max_density_error=0.01" > "$tmp/bench_sbs.json"
+python3 - "$tmp/bench_sbs.json" <<'PY'
+import json, sys
+b = json.load(open(sys.argv[1]))
+w, d = b["rows"]
+assert w["settings"] == "fluid.solver=wcsph" and w["solver"] == "wcsph" and w["steps"] == 30, w
+assert d["settings"] == "fluid.solver=dfsph fluid.max_density_error=0.01" and d["solver"] == "dfsph", d
+assert w["simulated_seconds"] <= d["simulated_seconds"] < w["simulated_seconds"] + 2 * d["mean_dt"], (w, d)
+assert d["steps"] < w["steps"] and d["density_iterations_per_step"] >= 1, d
+assert w["against_first"] == 1 and abs(d["against_first"] - d["wall_seconds_per_simulated_second"]
+                                       / w["wall_seconds_per_simulated_second"]) < 1e-9
+print("bench --side-by-side: %d WCSPH steps against %d DFSPH steps over %.4f s of water"
+      % (w["steps"], d["steps"], w["simulated_seconds"]))
+PY
 # Same run at 1 and 2 threads: same state hash.
 "$scour" run dambreak --headless --steps 30 --threads 1 --out "$tmp/t1" >/dev/null
 "$scour" run dambreak --headless --steps 30 --threads 2 --out "$tmp/t2" >/dev/null
