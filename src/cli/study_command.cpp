@@ -129,7 +129,7 @@ int study(const StudyCommandOptions& o) {
   std::vector<StudyRow> rows = runEngineStudies(so);
   std::vector<std::string> studies = {"spacing", "time_step", "eos", "neighbor_search",
                                       "advection", "diffusion_form", "morphological_factor",
-                                      "erosion_spacing"};
+                                      "erosion_spacing", "solver"};
   if (!o.noRender) {
     for (StudyRow& r : renderGridStudy(o.quick, so.log)) rows.push_back(std::move(r));
     studies.push_back("render_grid");

@@ -64,8 +64,20 @@ const std::vector<std::pair<double, double>> kMartinMoyce = {
     {0.832, 1.217}, {1.219, 1.474}, {1.997, 2.292}, {2.547, 2.995},
     {3.345, 4.134}, {4.034, 4.944}, {4.418, 5.881}, {5.091, 6.980}};
 
+// The mean compression of the water, max(ρ/ρ0 − 1, 0) averaged over the particles: what
+// DFSPH's fluid.max_density_error bounds, read from each solver's own density.
+double meanCompression(const World& w) {
+  const Fluid& f = w.fluid();
+  const double rho0 = w.params().rest_density;
+  double sum = 0;
+  for (size_t i = 0; i < f.size(); ++i) sum += std::max(double(f.rho[i]) / rho0 - 1.0, 0.0);
+  return f.size() ? sum / double(f.size()) : 0.0;
+}
+
+// The dam break's front against Martin & Moyce; *compression (when given): the mean compression
+// averaged over every step of the run.
 StudyRow damBreak(const std::string& study, const std::string& choice, SceneSpec spec,
-                  double tMax) {
+                  double tMax, double* compression = nullptr) {
   const double a = 0.05715;
   World w(buildScene(spec).desc);
   const double tScale = std::sqrt(2.0 * w.params().gravity / a);
@@ -79,8 +91,13 @@ StudyRow damBreak(const std::string& study, const std::string& choice, SceneSpec
     return double(m) + half;
   };
   front.back().second = xmax() / a;
-  const Run run = drive(w, [&] { return w.time() * tScale > tMax + 0.2; },
-                        [&] { front.emplace_back(w.time() * tScale, xmax() / a); });
+  double squeezed = 0;
+  long steps = 0;
+  const Run run = drive(w, [&] { return w.time() * tScale > tMax + 0.2; }, [&] {
+    front.emplace_back(w.time() * tScale, xmax() / a);
+    if (compression) squeezed += meanCompression(w), ++steps;
+  });
+  if (compression) *compression = run.status == "ok" && steps ? squeezed / double(steps) : kInf;
   double worst = 0;
   for (auto [T, Z] : kMartinMoyce) {
     // From T = 1.2 on, as ../shared/tools/dambreak-front.py does: the first point (T = 0.83)
@@ -99,8 +116,9 @@ StudyRow damBreak(const std::string& study, const std::string& choice, SceneSpec
   return row(study, "dam-break front", choice, worst, run, w);
 }
 
+// *compression (when given): the mean compression averaged over the same samples as the pressure.
 StudyRow hydrostatic(const std::string& study, const std::string& choice, SceneSpec spec,
-                     double settle, double average) {
+                     double settle, double average, double* compression = nullptr) {
   const Scene s = buildScene(spec);
   const double ds = spec.params.spacing, g = spec.params.gravity, rho0 = spec.params.rest_density;
   const Heightfield& hf = s.desc.terrain;
@@ -110,8 +128,11 @@ StudyRow hydrostatic(const std::string& study, const std::string& choice, SceneS
   const int layers = int(std::ceil(H / ds)) + 2;
   std::vector<double> sumP(layers, 0), sumY(layers, 0);
   std::vector<long> count(layers, 0);
+  double squeezed = 0;
+  long samples = 0;
   const Run run = drive(w, [&] { return w.time() >= settle + average; }, [&] {
     if (w.time() < settle || w.steps() % 10) return;
+    squeezed += meanCompression(w), ++samples;
     const Fluid& f = w.fluid();
     for (size_t i = 0; i < f.size(); ++i) {
       const int b = int(f.x[i].y() / ds);
@@ -127,6 +148,7 @@ StudyRow hydrostatic(const std::string& study, const std::string& choice, SceneS
     const double expect = rho0 * g * (H - y);
     worst = std::max(worst, std::abs(p / expect - 1.0));
   }
+  if (compression) *compression = run.status == "ok" && samples ? squeezed / double(samples) : kInf;
   return row(study, "hydrostatic pressure", choice, worst, run, w);
 }
 
@@ -399,6 +421,33 @@ std::vector<StudyRow> runEngineStudies(const StudyOptions& o) {
   for (auto& r : morphologicalFactor(o.quick)) add(r);
   // 8. The carved terrain against particle spacing.
   for (auto& r : erosionSpacing(o.quick)) add(r);
+
+  // 9. The pressure solver: WCSPH's equation of state against DFSPH at two density-error
+  // tolerances, on the front, the tank and the water's mean compression in each.
+  {
+    struct Choice {
+      const char* name;
+      FluidSolver solver;
+      double tolerance;
+    };
+    for (const Choice& c : {Choice{"WCSPH", FluidSolver::kWcsph, 0.0}, Choice{"DFSPH 1 %", FluidSolver::kDfsph, 0.01},
+                            Choice{"DFSPH 0.1 %", FluidSolver::kDfsph, 0.001}}) {
+      auto set = [&](SceneSpec s) {
+        s.params.solver = c.solver;
+        if (c.solver == FluidSolver::kDfsph) s.params.max_density_error = c.tolerance;
+        return s;
+      };
+      double surge = 0, tank = 0;
+      StudyRow front = damBreak("solver", c.name, set(damBase), tMax, &surge);
+      SceneSpec t = presetSpec("hydrostatic");
+      t.params.spacing = o.quick ? 0.04 : 0.02;
+      StudyRow pressure = hydrostatic("solver", c.name, set(t), settle, average, &tank);
+      StudyRow squeezedFront = front, squeezedTank = pressure;
+      squeezedFront.reference = "mean compression (dam break)", squeezedFront.error = surge;
+      squeezedTank.reference = "mean compression (tank)", squeezedTank.error = tank;
+      for (StudyRow r : {front, squeezedFront, pressure, squeezedTank}) add(std::move(r));
+    }
+  }
 
   markPareto(rows);
   return rows;
