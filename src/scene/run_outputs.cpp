@@ -40,7 +40,8 @@ RunOutputs::RunOutputs(std::filesystem::path dir, RunOutputOptions o, const Scen
     : dir_(std::move(dir)), options_(o), scene_(scene) {
   // One row every K steps (and at step 0), cumulative pass seconds.
   metrics_ << "step,time_s,dt_s,particles,max_speed_m_s,terrain_m3,suspended_m3,removed_m3,"
-              "soil_relative_error,morph_time_s,factor,bed_step_ds,morphological_m3";
+              "soil_relative_error,morph_time_s,factor,bed_step_ds,morphological_m3,"
+              "density_iterations,density_error,divergence_iterations,divergence_error";
   for (size_t p = 0; p < size_t(Pass::kCount); ++p) metrics_ << "," << passName(Pass(p)) << "_s";
   metrics_ << "\n";
 }
@@ -51,7 +52,9 @@ void RunOutputs::metricsRow(const World& w, const StepStats& s) {
            << w.fluid().size() << "," << s.max_speed << "," << std::setprecision(15) << soil.terrain
            << "," << soil.suspended << "," << soil.removed << "," << soil.relativeError() << ","
            << std::setprecision(9) << w.morphologicalTime() << "," << s.factor << "," << s.bed_step_ds
-           << "," << std::setprecision(15) << soil.morphological << std::setprecision(6);
+           << "," << std::setprecision(15) << soil.morphological << std::setprecision(6) << ","
+           << s.density_iterations << "," << s.density_error << "," << s.divergence_iterations << ","
+           << s.divergence_error;
   for (size_t p = 0; p < size_t(Pass::kCount); ++p) metrics_ << "," << w.passSeconds()[p];
   metrics_ << "\n";
 }
@@ -67,6 +70,12 @@ void RunOutputs::start(const World& w) {
 
 void RunOutputs::afterStep(const World& w, const StepRecord& r) {
   const long step = w.steps();
+  SolverTally& t = solver_;
+  t.smallestDt = t.steps == 0 ? r.stats.dt : std::min(t.smallestDt, r.stats.dt);
+  ++t.steps, t.simulated += r.stats.dt;
+  t.densityIterations += r.stats.density_iterations, t.divergenceIterations += r.stats.divergence_iterations;
+  t.densityMost = std::max(t.densityMost, r.stats.density_iterations);
+  t.divergenceMost = std::max(t.divergenceMost, r.stats.divergence_iterations);
   if (options_.particlesEvery > 0 && step % options_.particlesEvery == 0)
     writeParticlesPly(dir_ / numbered("particles_%06ld.ply", step), w.fluid(),
                       w.params().particleVolume(), w.time());
@@ -198,6 +207,23 @@ json RunOutputs::finish(const World& w, const RunEnd& end, double wallSeconds, c
   summary["wall_s"] = wallSeconds;
   summary["threads"] = omp_get_max_threads();
   summary["pass_seconds"] = passSecondsJson(w);
+  // This run's steps (a resumed run's own, not the checkpoint's): what the step cost in wall
+  // time per second of water, and what the implicit solver's iterations were.
+  const SolverTally& t = solver_;
+  const double perStep = t.steps > 0 ? 1.0 / double(t.steps) : 0.0;
+  const ParamInfo& which = *findParam("fluid.solver");
+  json solver = {{"name", which.choices[which.getChoice(w.params())]},
+                 {"steps", t.steps},
+                 {"mean_dt_s", t.simulated * perStep},
+                 {"smallest_dt_s", t.smallestDt},
+                 {"wall_s_per_simulated_s", t.simulated > 0 ? wallSeconds / t.simulated : 0.0}};
+  if (w.params().solver == FluidSolver::kDfsph) {
+    solver["density_iterations_per_step"] = double(t.densityIterations) * perStep;
+    solver["divergence_iterations_per_step"] = double(t.divergenceIterations) * perStep;
+    solver["most_density_iterations"] = t.densityMost;
+    solver["most_divergence_iterations"] = t.divergenceMost;
+  }
+  summary["solver"] = solver;
   const InvariantReport& inv = w.invariants();
   summary["invariants"] = {{"nan", inv.nan},
                            {"max_penetration_over_ds", inv.max_penetration_over_ds},

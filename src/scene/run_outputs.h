@@ -67,6 +67,14 @@ class RunOutputs {
   RunOutputOptions options_;
   const Scene& scene_;
   std::ostringstream metrics_;
+  /// The run's steps as the solver saw them (summary.json "solver"): this run's steps, the water
+  /// time they covered, the solves' iterations summed and at most.
+  struct SolverTally {
+    long steps = 0;
+    double simulated = 0, smallestDt = 0;
+    long densityIterations = 0, divergenceIterations = 0;
+    int densityMost = 0, divergenceMost = 0;
+  } solver_;
   nlohmann::json extra_ = nlohmann::json::object();
 };
 

@@ -235,6 +235,35 @@ assert "pressure_solve" in d["seconds_per_step"] and "divergence_solve" in d["se
 print("bench dfsph: %.1f density, %.1f divergence iterations per step; step %.2f ms against %.3f ms"
       % (d["density_iterations_per_step"], d["divergence_iterations_per_step"], 1e3 * d["mean_dt"], 1e3 * w["mean_dt"]))
 PY
+# run under DFSPH: metrics.csv carries each row's solve iterations and errors, summary.json the
+# run's solver figures, and they agree with each other (the last row is the last step).
+"$scour" run dambreak --steps 20 --metrics-every 5 --threads 1 --set fluid.solver=dfsph --out "$tmp/df" >/dev/null
+python3 - "$tmp/df" "$tmp/run" <<'PY'
+import json, os, sys
+d, w = sys.argv[1:3]
+s = json.load(open(os.path.join(d, "summary.json")))["solver"]
+assert s["name"] == "dfsph" and s["steps"] == 20, s
+assert s["density_iterations_per_step"] >= 2 and s["most_density_iterations"] >= s["density_iterations_per_step"], s
+assert s["divergence_iterations_per_step"] >= 1 and s["most_divergence_iterations"] >= 1, s
+assert 0 < s["smallest_dt_s"] <= s["mean_dt_s"] and s["wall_s_per_simulated_s"] > 0, s
+rows = open(os.path.join(d, "metrics.csv")).read().splitlines()
+head = rows[0].split(",")
+assert head[13:17] == ["density_iterations", "density_error", "divergence_iterations", "divergence_error"], head
+last = dict(zip(head, rows[-1].split(",")))
+assert 2 <= int(last["density_iterations"]) <= s["most_density_iterations"], last
+assert 0 <= float(last["density_error"]) <= 0.001 and 0 <= float(last["divergence_error"]) <= 0.001, last
+first = dict(zip(head, rows[1].split(",")))
+assert first["density_iterations"] == "0", first  # step 0: no solve yet
+# WCSPH: the columns are there and 0; the summary names the solver and has no iteration figures.
+ws = json.load(open(os.path.join(w, "summary.json")))["solver"]
+assert ws["name"] == "wcsph" and "density_iterations_per_step" not in ws and ws["steps"] == 20, ws
+wr = open(os.path.join(w, "metrics.csv")).read().splitlines()
+wl = dict(zip(wr[0].split(","), wr[-1].split(",")))
+assert wl["density_iterations"] == "0" and wl["divergence_iterations"] == "0", wl
+print("run dfsph: %.1f density, %.1f divergence iterations per step (most %d, %d)"
+      % (s["density_iterations_per_step"], s["divergence_iterations_per_step"],
+         s["most_density_iterations"], s["most_divergence_iterations"]))
+PY
 # bench --side-by-side: the settings stepped in turn over the same water's time, each its own
 # solver's row; the others follow the first to its simulated time (within one of their steps).
 "$scour" bench dambreak --steps 30 --warmup 1 --threads 1 --json --side-by-side fluid.solver=wcsph \
