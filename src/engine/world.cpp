@@ -278,7 +278,11 @@ void World::sedimentWork() {
     timed(Pass::kTerrain, [&] {
       // The geologic clock (model.md, "two clocks"): the bed takes N times the step's exchange;
       // the guard halves N until no boundary particle's bed moves more than the bound.
-      const double bound = params_.max_bed_step * params_.spacing;
+      // erosion.max_bed_step is per WCSPH step, λ h / c_s of water; a DFSPH step k times as long
+      // may move the bed k times as far, so that the bed's speed against the water, which the
+      // guard bounds, and with it N, are the same under either solver (model.md, "the guard").
+      double bound = params_.max_bed_step * params_.spacing;
+      if (implicit()) bound *= std::max(1.0, dt_ / (params_.cfl * sph_.h / params_.sound_speed));
       const double peak = accumulator_.bedMotion(boundary_, INFINITY).peak;
       if (stepFactor_ > 1 && stepFactor_ * peak > bound) {
         const double was = stepFactor_;

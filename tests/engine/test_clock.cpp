@@ -150,3 +150,31 @@ TEST_CASE("the bed guard halves N until no step moves the bed more than its boun
   w.setParams(p);
   CHECK(w.morphologicalFactor() == 20);
 }
+
+TEST_CASE("under DFSPH the guard's bound is per WCSPH step of water, so N is the same under either solver",
+          "[clock][dfsph]") {
+  // The bound is the bed's speed against the water: a DFSPH step k = Δt / (λ h / c_s) times as long
+  // as WCSPH's may move the bed k times as far. Same river, same N and bound as above.
+  const double n = 1e4, bound = 1e-4;
+  Scene s = river(n, 0.0, bound);
+  s.desc.params.solver = FluidSolver::kDfsph;
+  World df(s.desc);
+  const SimParams& p = df.params();
+  const double wcsphStep = p.cfl * p.support() / p.sound_speed;
+  bool beyondPlain = false;
+  for (int k = 0; k < 40; ++k) {
+    const StepStats st = df.step();
+    const double allowed = bound * std::max(1.0, st.dt / wcsphStep);
+    if (st.factor > 1) CHECK(st.bed_step_ds <= allowed * (1 + 1e-12));
+    beyondPlain = beyondPlain || st.bed_step_ds > bound;
+  }
+  CHECK(beyondPlain);  // the longer steps used the room they were given
+  World wc(river(n, 0.0, bound).desc);
+  while (wc.time() < df.time()) wc.step();
+  INFO("over " << df.time() << " s of water: N = " << df.morphologicalFactor() << " under DFSPH, "
+               << wc.morphologicalFactor() << " under WCSPH");
+  CHECK(df.bedGuard().lowered >= 1);
+  CHECK(df.morphologicalFactor() >= 0.5 * wc.morphologicalFactor());
+  CHECK(df.morphologicalFactor() <= 2.0 * wc.morphologicalFactor());
+  CHECK(df.soilBudget().relativeError() < 1e-12);
+}
