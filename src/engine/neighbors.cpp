@@ -135,12 +135,14 @@ void NeighborLists::fill(size_t n, Gather&& gather) {
     chunks_.resize(std::max<size_t>(chunks_.size(), size_t(threads)));
     // implicit barrier after single
     std::vector<uint32_t>& chunk = chunks_[t];
-    chunk.clear();
+    // The chunk's size is its high-water mark: gather writes from `end` on, grows it when it must
+    // (never zero-filling what it keeps), and returns the list's new end.
+    size_t end = 0;
     const size_t b = blockBegin(n, threads, t), e = blockBegin(n, threads, t + 1);
     for (size_t i = b; i < e; ++i) {
-      const size_t before = chunk.size();
-      gather(i, chunk);
-      count_[i] = uint32_t(chunk.size() - before);
+      const size_t after = gather(i, chunk, end);
+      count_[i] = uint32_t(after - end);
+      end = after;
     }
     const uint32_t* p = chunk.data();
     for (size_t i = b; i < e; ++i) {
@@ -159,22 +161,38 @@ void NeighborLists::build(const Grid& grid, const std::vector<Vec3f>& x,
 #pragma omp parallel for schedule(static)
   for (size_t k = 0; k < sorted.size(); ++k) inCellOrder[k] = y[sorted[k]];
   const Vec3f* ys = inCellOrder.data();
-  fill(x.size(), [&](size_t i, std::vector<uint32_t>& chunk) {
+  // Particles in Z-order come in runs of one cell: the rows of cells around a cell are found once
+  // for the run (each thread its own).
+  struct alignas(64) Rows {  // a cache line or more each: no thread writes into another's line
+    Eigen::Vector3i cell{-2, -2, -2};
+    int count = 0;
+    uint32_t begin[9], end[9];
+    uint32_t candidates = 0;
+  };
+  std::vector<Rows> rowsOf(static_cast<size_t>(omp_get_max_threads()));
+  fill(x.size(), [&](size_t i, std::vector<uint32_t>& chunk, size_t at) {
     const Vec3f xi = x[i];
-    grid.forEachCandidateRange(xi, start, [&](uint32_t b, uint32_t e) {
-      // Without a branch: every candidate is written, and the end moves past it when it is a
-      // neighbor (about half of them are: a branch on it mispredicted that often).
-      const size_t at = chunk.size();
-      if (chunk.capacity() < at + (e - b)) chunk.reserve(2 * (at + (e - b)));
-      chunk.resize(at + (e - b));
-      uint32_t* out = chunk.data() + at;
-      for (uint32_t k = b; k < e; ++k) {
+    Rows& rows = rowsOf[size_t(omp_get_thread_num())];
+    const Eigen::Vector3i c = grid.cellOf(xi);
+    if (c != rows.cell) {
+      rows.cell = c, rows.count = 0, rows.candidates = 0;
+      grid.forEachCandidateRange(xi, start, [&](uint32_t b, uint32_t e) {
+        rows.begin[rows.count] = b, rows.end[rows.count++] = e;
+        rows.candidates += e - b;
+      });
+    }
+    // Without a branch: every candidate is written, and the end moves past it when it is a
+    // neighbor (a branch on it mispredicted too often).
+    if (chunk.size() < at + rows.candidates) chunk.resize(std::max(2 * chunk.size(), at + rows.candidates));
+    uint32_t* const base = chunk.data();
+    uint32_t* out = base + at;
+    for (int q = 0; q < rows.count; ++q)
+      for (uint32_t k = rows.begin[q]; k < rows.end[q]; ++k) {
         const uint32_t j = sorted[k];
         *out = j;
         out += ((xi - ys[k]).squaredNorm() < r2) & !(self && j == i);
       }
-      chunk.resize(size_t(out - chunk.data()));
-    });
+    return size_t(out - base);
   });
 }
 
@@ -182,10 +200,11 @@ void NeighborLists::build(const KdTree& tree, const std::vector<Vec3f>& x, float
   static const std::vector<Vec3f> kNone;
   const std::vector<Vec3f>& y = tree.points() ? *tree.points() : kNone;
   const float r2 = r * r;
-  fill(x.size(), [&](size_t i, std::vector<uint32_t>& chunk) {
-    if (y.empty()) return;
+  fill(x.size(), [&](size_t i, std::vector<uint32_t>& chunk, size_t at) {
+    chunk.resize(at);
+    if (y.empty()) return at;
     const Vec3f xi = x[i];
-    const size_t before = chunk.size();
+    const size_t before = at;
     tree.candidates(xi, r, chunk);
     // The grid's own test, so both searches agree on the pairs at |r_ij| ≈ h to the bit.
     auto keep = std::remove_if(chunk.begin() + long(before), chunk.end(), [&](uint32_t j) {
@@ -193,6 +212,7 @@ void NeighborLists::build(const KdTree& tree, const std::vector<Vec3f>& x, float
     });
     chunk.erase(keep, chunk.end());
     std::sort(chunk.begin() + long(before), chunk.end());
+    return chunk.size();
   });
 }
 

@@ -144,8 +144,9 @@ class NeighborLists {
   size_t bytes() const;
 
  private:
-  /// Runs gather(i, chunk) for the particles of each thread's block, in ascending i; gather
-  /// appends i's neighbors to the chunk.
+  /// Runs gather(i, chunk, end) for the particles of each thread's block, in ascending i; gather
+  /// writes i's neighbors into the chunk from index `end` on (growing it if it must: its size is
+  /// a high-water mark, not the lists' end) and returns their new end.
   template <class Gather>
   void fill(size_t n, Gather&& gather);
 
