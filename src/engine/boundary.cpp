@@ -76,6 +76,9 @@ void BoundarySampler::generate(const Heightfield& hf, BoundaryParticles& b) cons
   const int cellsX = hf.nx() - 1, cellsZ = hf.nz() - 1;
   BoundaryParticles out;
   out.cellsX = cellsX;
+  // The set changes by a few tiles a step: room for the last one and an eighth more (pushing
+  // alone would double the arrays, and their slack is memory every particle pays for).
+  out.reserve(b.size() + b.size() / 8 + 64);
   size_t j = 0;  // b's particles are in tile order: a cursor over them
   for (int t : active_) {
     while (j < b.size() && tileOf(b.triangle[j], cellsX) < t) ++j;

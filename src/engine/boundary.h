@@ -42,6 +42,10 @@ struct BoundaryParticles {
   int cellsX = 0;  ///< the terrain's cells along x
   size_t size() const { return x.size(); }
   void clear() { x.clear(), triangle.clear(), area.clear(), bary.clear(), patch.clear(), extent.clear(); }
+  /// Room for n particles in every array.
+  void reserve(size_t n) {
+    x.reserve(n), triangle.reserve(n), area.reserve(n), bary.reserve(n), patch.reserve(n), extent.reserve(n);
+  }
   /// Appends the particles [first, last) of `from`.
   void append(const BoundaryParticles& from, size_t first, size_t last) {
     auto copy = [&](auto& to, const auto& src) { to.insert(to.end(), src.begin() + long(first), src.begin() + long(last)); };

@@ -169,7 +169,7 @@ SolveReport iterate(const DfsphConstants& k, const NeighborLists& nbrs, double d
 void dfsphFactors(const DfsphConstants& k, const NeighborLists& nbrs, const Heightfield& hf, const Domain& dom,
                   Fluid& f, DfsphWorkspace& w) {
   const size_t n = f.size();
-  w.alpha.resize(n), w.wall.resize(n);
+  resizeForParticles(w.alpha, n), resizeForParticles(w.wall, n);
   const float m = float(k.mass);
   w.first.resize(n + 1);
   w.first[0] = 0;
@@ -219,7 +219,7 @@ SolveReport solveDensity(const DfsphConstants& k, const NeighborLists& nbrs, dou
                          int maxIterations, Fluid& f, DfsphWorkspace& w) {
   const size_t n = f.size();
   if (n == 0) return {};
-  w.change.resize(n), w.error.resize(n);
+  resizeForParticles(w.change, n), resizeForParticles(w.error, n);
   std::vector<float>& kappa = f.p;  // κ = p/ρ during the solve
   const float rho0 = float(k.rho0), step = float(dt), perDt2 = float(kRelaxation / (dt * dt));
   // Warm start: last step's pressure where the water is compressed now.
@@ -251,7 +251,7 @@ SolveReport solveDivergence(const DfsphConstants& k, const NeighborLists& nbrs, 
                             int maxIterations, Fluid& f, DfsphWorkspace& w) {
   const size_t n = f.size();
   if (n == 0) return {};
-  w.change.resize(n), w.error.resize(n);
+  resizeForParticles(w.change, n), resizeForParticles(w.error, n);
   const float rho0 = float(k.rho0), step = float(dt), perDt = float(kRelaxation / dt);
   return iterate(
       k, nbrs, dt, maxError, kMinDivergenceIterations, maxIterations, f, w,

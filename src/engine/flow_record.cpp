@@ -14,15 +14,20 @@ void FlowRecord::reset(int nx, int nz) {
   nx_ = nx, nz_ = nz, tilesX_ = (nx + kTile - 1) / kTile;
   time_ = 0;
   slot_.assign(size_t(tilesX_) * size_t((nz + kTile - 1) / kTile), -1);
-  tiles_.clear(), values_.clear(), touched_.clear(), step_.clear();
+  tiles_.clear(), values_.clear(), step_.clear(), listed_.clear();
 }
 
 size_t FlowRecord::slotOf(size_t tile) {
   if (slot_[tile] < 0) {
     slot_[tile] = int32_t(tiles_.size());
     tiles_.push_back(int(tile));
-    values_.resize(values_.size() + size_t(kFields) * kTileVertices, 0.0);
-    step_.resize(step_.size() + kTileVertices);
+    // Grown by an eighth when full, not doubled: the record's memory follows the wetted area.
+    auto append = [](auto& array, size_t count, auto value) {
+      if (array.size() + count > array.capacity()) array.reserve(array.size() + std::max(count, array.size() / 8));
+      array.resize(array.size() + count, value);
+    };
+    append(values_, size_t(kFields) * kTileVertices, 0.0);
+    append(listed_, size_t(kTileVertices), int32_t(-1));
   }
   return size_t(slot_[tile]);
 }
@@ -46,32 +51,36 @@ void FlowRecord::record(const Heightfield& hf, const std::vector<double>& vertex
     for (int k = k0; k <= k1; ++k)
       for (int i = i0; i <= i1; ++i) area += vertexArea[size_t(k) * size_t(nx_) + size_t(i)];
     const double qx = volume * double(f.v[p].x()) / area, qz = volume * double(f.v[p].z()) / area;
-    const double t = double(tau[p]);
+    const float t = tau[p];
     for (int k = k0; k <= k1; ++k)
       for (int i = i0; i <= i1; ++i) {
         // The vertex's place in its tile's slot: no division on the way.
         const size_t tile = size_t(k / kTile) * size_t(tilesX_) + size_t(i / kTile);
         const size_t s = slotOf(tile) * kTileVertices + size_t((k % kTile) * kTile + i % kTile);
-        StepSum& sum = step_[s];
-        if (!sum.listed) sum = {0.0, 0.0, 0.0, 1u}, touched_.push_back(int(s));
+        int32_t& listed = listed_[s];
+        if (listed < 0) {
+          listed = int32_t(step_.size());
+          if (step_.size() == step_.capacity()) step_.reserve(step_.size() + step_.size() / 8 + 256);
+          step_.push_back({0.0, 0.0, 0.0f, uint32_t(s)});
+        }
+        StepSum& sum = step_[size_t(listed)];
         sum.qx += qx, sum.qz += qz;
         sum.tau = std::max(sum.tau, t);
       }
   }
-  for (int e : touched_) {
-    const size_t s = size_t(e), slot = s / kTileVertices, local = s % kTileVertices;
+  for (const StepSum& sum : step_) {
+    const size_t s = sum.vertex, slot = s / kTileVertices, local = s % kTileVertices;
     double* at = values_.data() + slot * kFields * kTileVertices + local;
     auto field = [&](Field fl) -> double& { return at[size_t(fl) * kTileVertices]; };
-    StepSum& sum = step_[s];
     field(Field::kWet) += dtm;
     field(Field::kFlow) += std::sqrt(sum.qx * sum.qx + sum.qz * sum.qz) * dtm;
     field(Field::kQx) += sum.qx * dtm;
     field(Field::kQz) += sum.qz * dtm;
-    field(Field::kShear) += sum.tau * dtm;
-    field(Field::kPeak) = std::max(field(Field::kPeak), sum.tau);
-    sum.listed = 0;
+    field(Field::kShear) += double(sum.tau) * dtm;
+    field(Field::kPeak) = std::max(field(Field::kPeak), double(sum.tau));
+    listed_[s] = -1;
   }
-  touched_.clear();
+  step_.clear();
   time_ += dtm;
 }
 
@@ -91,13 +100,45 @@ std::vector<double> FlowRecord::dense(Field fl) const {
 
 size_t FlowRecord::bytes() const {
   return slot_.capacity() * sizeof(int32_t) + tiles_.capacity() * sizeof(int) + values_.capacity() * sizeof(double) +
-         touched_.capacity() * sizeof(int) + step_.capacity() * sizeof(StepSum);
+         step_.capacity() * sizeof(StepSum) + listed_.capacity() * sizeof(int32_t);
 }
 
-void FlowRecord::restore(int nx, int nz, double time, std::vector<int> tiles, std::vector<double> values) {
+void FlowRecord::restore(int nx, int nz, double time, std::vector<int> tiles, std::vector<double> values,
+                         int tile) {
   FlowRecord r;
   r.reset(nx, nz);
   auto corrupt = [] { return std::runtime_error("state is corrupt (flow maps)"); };
+  if (tile != kTile) {
+    // Tiles of `tile` vertices (a multiple of ours) cut into ours, in the same order; one that
+    // holds only zeros (never touched) is left out, as a run would never have made it.
+    const int per = tile / kTile, tilesXOld = (nx + tile - 1) / tile;
+    const size_t oldVertices = size_t(tile) * size_t(tile);
+    if (tile % kTile != 0 || values.size() != tiles.size() * size_t(kFields) * oldVertices) throw corrupt();
+    std::vector<int> cutTiles;
+    std::vector<double> cutValues;
+    for (size_t slot = 0; slot < tiles.size(); ++slot) {
+      if (tiles[slot] < 0 || tiles[slot] >= tilesXOld * ((nz + tile - 1) / tile)) throw corrupt();
+      const int ti = tiles[slot] % tilesXOld, tk = tiles[slot] / tilesXOld;
+      for (int a = 0; a < per; ++a)
+        for (int b = 0; b < per; ++b) {
+          const int i0 = (ti * per + b) * kTile, k0 = (tk * per + a) * kTile;
+          if (i0 >= nx || k0 >= nz) continue;
+          std::vector<double> cut(size_t(kFields) * kTileVertices);
+          bool any = false;
+          for (int fl = 0; fl < kFields; ++fl)
+            for (int v = 0; v < kTileVertices; ++v) {
+              const size_t row = size_t(a * kTile + v / kTile), col = size_t(b * kTile + v % kTile);
+              const double value = values[(slot * kFields + size_t(fl)) * oldVertices + row * size_t(tile) + col];
+              cut[size_t(fl) * kTileVertices + size_t(v)] = value;
+              any = any || value != 0.0;
+            }
+          if (!any) continue;
+          cutTiles.push_back((k0 / kTile) * r.tilesX_ + i0 / kTile);
+          cutValues.insert(cutValues.end(), cut.begin(), cut.end());
+        }
+    }
+    tiles = std::move(cutTiles), values = std::move(cutValues);
+  }
   if (!std::isfinite(time) || time < 0 || values.size() != tiles.size() * size_t(kFields) * kTileVertices) throw corrupt();
   for (size_t slot = 0; slot < tiles.size(); ++slot) {
     const int t = tiles[slot];
@@ -111,7 +152,7 @@ void FlowRecord::restore(int nx, int nz, double time, std::vector<int> tiles, st
   }
   r.time_ = time;
   r.tiles_ = std::move(tiles), r.values_ = std::move(values);
-  r.step_.assign(r.tiles_.size() * kTileVertices, StepSum{});
+  r.listed_.assign(r.tiles_.size() * kTileVertices, -1);
   *this = std::move(r);
 }
 

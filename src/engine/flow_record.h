@@ -18,7 +18,8 @@
 //   direction   Σ q Δt_m    [m³/m], a vector (x, z)
 //   shear       Σ τ Δt_m    [Pa s] and the peak τ [Pa]
 // A vertex never covered keeps zeros in all of them. The per-vertex arrays live in tiles of
-// 16 × 16 vertices made on first touch, so their memory follows the water. The particles are
+// 8 × 8 vertices made on first touch, so their memory follows the water (56 bytes a vertex:
+// the six sums and the place of its sums in this step's list). The particles are
 // visited in index order by one thread: the sums are the same at any thread count.
 
 #include <cstdint>
@@ -31,7 +32,7 @@ namespace scour {
 
 class FlowRecord {
  public:
-  static constexpr int kTile = 16;
+  static constexpr int kTile = 8;
 
   /// Starts an empty record over a grid of nx × nz vertices.
   void reset(int nx, int nz);
@@ -54,9 +55,12 @@ class FlowRecord {
 
   /// The state: the bed time, the tiles and their values (the world state stores these).
   const std::vector<double>& values() const { return values_; }
-  /// Puts back a state for a grid of nx × nz vertices; std::runtime_error ("state is corrupt
-  /// (flow maps)") when the tiles or values do not fit it. The record is unchanged then.
-  void restore(int nx, int nz, double time, std::vector<int> tiles, std::vector<double> values);
+  /// Puts back a state for a grid of nx × nz vertices, its tiles `tile` × `tile` vertices (a
+  /// world state of version 7 has tiles of 16: they are cut into this build's, those holding
+  /// nothing left out); std::runtime_error ("state is corrupt (flow maps)") when the tiles or
+  /// values do not fit it. The record is unchanged then.
+  void restore(int nx, int nz, double time, std::vector<int> tiles, std::vector<double> values,
+               int tile = kTile);
 
  private:
   enum class Field { kWet, kFlow, kQx, kQz, kShear, kPeak, kCount };
@@ -70,14 +74,15 @@ class FlowRecord {
   std::vector<int32_t> slot_;   ///< per tile: its slot, or −1
   std::vector<int> tiles_;      ///< per slot: its tile
   std::vector<double> values_;  ///< per slot, kFields × kTile² values (field-major)
-  // This step's sums, per touched vertex.
-  std::vector<int> touched_;    ///< slot × kTile² + place in the tile
-  /// Per slot × kTile²: this step's sums, and 1 when in touched_ (one cache line together).
+  /// This step's sums of one touched vertex (slot × kTile² + place in the tile), in the order the
+  /// vertices were first touched.
   struct StepSum {
-    double qx = 0, qz = 0, tau = 0;
-    uint32_t listed = 0;
+    double qx = 0, qz = 0;
+    float tau = 0;  ///< the largest of the particles' τ (floats: their maximum is one of them)
+    uint32_t vertex = 0;
   };
   std::vector<StepSum> step_;
+  std::vector<int32_t> listed_;  ///< per slot × kTile²: its place in step_, or −1
 };
 
 }  // namespace scour

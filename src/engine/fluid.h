@@ -14,6 +14,15 @@ namespace scour {
 
 using Vec3f = Eigen::Vector3f;
 
+/// Makes a per-particle array n long; when it must grow, with room for an eighth more (a source adds
+/// a few particles a step: resize alone would double it, and the slack is memory every particle
+/// pays for).
+template <class Array>
+inline void resizeForParticles(Array& array, size_t n) {
+  if (n > array.capacity()) array.reserve(n + n / 8 + 64);
+  array.resize(n);
+}
+
 struct Fluid {
   std::vector<Vec3f> x;      ///< position [m]
   std::vector<Vec3f> v;      ///< velocity [m/s] (full step after a step completes)
@@ -39,10 +48,13 @@ struct Fluid {
         [&](const char* name, const auto& array) { f(name, array); });
   }
 
-  /// A new particle: every array gets a zero, then its place, velocity, id and density.
+  /// A new particle: every array gets a zero, then its place, velocity, id and density. A full
+  /// array grows by an eighth, not twice its size: a source adds a few particles a step, and the
+  /// arrays' slack is memory every particle pays for (the Z-order reorder trims it again).
   void push(const Vec3f& pos, const Vec3f& vel, uint32_t ident, float density) {
     forEachArray([](const char*, auto& array) {
       using T = typename std::remove_reference_t<decltype(array)>::value_type;
+      if (array.size() == array.capacity()) array.reserve(array.size() + array.size() / 8 + 64);
       if constexpr (std::is_arithmetic_v<T>) array.push_back(T(0));
       else array.push_back(T::Zero());
     });

@@ -124,10 +124,21 @@ std::vector<uint32_t> Grid::zOrder(const std::vector<Vec3f>& x) const {
   return order;
 }
 
+namespace {
+// A list chunk too short for what comes next grows by an eighth (resize alone would double its
+// capacity): its size is the high-water mark the next builds reuse, and its slack is memory every
+// particle pays for.
+void grow(std::vector<uint32_t>& chunk, size_t need) {
+  const size_t size = std::max(need, chunk.size() + chunk.size() / 8);
+  chunk.reserve(size);
+  chunk.resize(size);
+}
+}  // namespace
+
 template <class Gather>
 void NeighborLists::fill(size_t n, Gather&& gather) {
-  first_.resize(n);
-  count_.resize(n);
+  resizeForParticles(first_, n);
+  resizeForParticles(count_, n);
 #pragma omp parallel
   {
     const int threads = omp_get_num_threads(), t = omp_get_thread_num();
@@ -144,6 +155,14 @@ void NeighborLists::fill(size_t n, Gather&& gather) {
       count_[i] = uint32_t(after - end);
       end = after;
     }
+    // Lists that shrank by more than an eighth (the water spread out since the high-water mark)
+    // give the rest back, keeping a sixteenth for the next builds to grow into.
+    if (chunk.size() > end + end / 8 + 4096) {
+      std::vector<uint32_t> fit(chunk.begin(), chunk.begin() + long(end));
+      fit.reserve(end + end / 16);
+      fit.resize(end + end / 16);
+      chunk.swap(fit);
+    }
     const uint32_t* p = chunk.data();
     for (size_t i = b; i < e; ++i) {
       first_[i] = p;
@@ -157,7 +176,7 @@ void NeighborLists::build(const Grid& grid, const std::vector<Vec3f>& x,
                           const std::vector<uint32_t>& sorted, float r, bool self,
                           std::vector<Vec3f>& inCellOrder) {
   const float r2 = r * r;
-  inCellOrder.resize(sorted.size());
+  resizeForParticles(inCellOrder, sorted.size());
 #pragma omp parallel for schedule(static)
   for (size_t k = 0; k < sorted.size(); ++k) inCellOrder[k] = y[sorted[k]];
   const Vec3f* ys = inCellOrder.data();
@@ -183,7 +202,7 @@ void NeighborLists::build(const Grid& grid, const std::vector<Vec3f>& x,
     }
     // Without a branch: every candidate is written, and the end moves past it when it is a
     // neighbor (a branch on it mispredicted too often).
-    if (chunk.size() < at + rows.candidates) chunk.resize(std::max(2 * chunk.size(), at + rows.candidates));
+    if (chunk.size() < at + rows.candidates) grow(chunk, at + rows.candidates);
     uint32_t* const base = chunk.data();
     uint32_t* out = base + at;
     for (int q = 0; q < rows.count; ++q)

@@ -173,10 +173,12 @@ void transferSediment(const SedimentConstants& k, const SedimentEffects& fx,
   std::vector<float>& hind = ws.hind;
   std::vector<SedimentWorkspace::Scales>& scale = ws.scale;
   std::vector<double>& delta = ws.delta;
-  conc.resize(n);
-  hind.resize(n);
-  scale.assign(n, {});
-  delta.assign(n, 0.0);
+  resizeForParticles(conc, n);
+  resizeForParticles(hind, n);
+  resizeForParticles(scale, n);
+  resizeForParticles(delta, n);
+  std::fill(scale.begin(), scale.end(), SedimentWorkspace::Scales{});
+  std::fill(delta.begin(), delta.end(), 0.0);
 #pragma omp parallel for schedule(static)
   for (size_t i = 0; i < n; ++i) {
     conc[i] = float(f.sed[i] / V);
@@ -289,7 +291,7 @@ double pairShear(const SedimentConstants& k, double speed, double l) {
 void bedShear(const SedimentConstants& k, const NeighborLists& bnbrs, const BoundaryParticles& b,
               const Fluid& f, std::vector<float>& tau) {
   const size_t n = f.size();
-  tau.resize(n);
+  resizeForParticles(tau, n);
 #pragma omp parallel for schedule(static)
   for (size_t i = 0; i < n; ++i) {
     double peak = -1.0;
@@ -306,7 +308,7 @@ void erode(const SedimentConstants& k, const NeighborLists& bnbrs, const Boundar
   const size_t n = f.size();
   const double room = k.c_max * k.volume;
   BoundaryVolumes& eroded = ws.exchanges;
-  ws.tau.resize(n);
+  resizeForParticles(ws.tau, n);
 #pragma omp parallel
   {
     const int threads = omp_get_num_threads(), t = omp_get_thread_num();

@@ -147,7 +147,7 @@ double integrateDensity(const SphConstants& k, const NeighborLists& nbrs, const 
   // into a compressed one took the latter from 1012 to 2874 kg/m³ in one step (docs/model.md).
   const float eta2 = float(0.01 * k.h * k.h);
   std::vector<float>& next = f.scratch;
-  next.resize(n);
+  resizeForParticles(next, n);
   double maxRate = 0.0;
 #pragma omp parallel for schedule(static) reduction(max : maxRate)
   for (size_t i = 0; i < n; ++i) {

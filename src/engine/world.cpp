@@ -418,7 +418,7 @@ StepStats World::step() {
   if (effects_.fluid_motion && !implicit()) {
     timed(Pass::kIntegrate, [&] {
       // The force time's velocity, predicted from the half step: v̂ = v(t+Δt/2) + Δt/2 · a(t).
-      vhat_.resize(n);
+      resizeForParticles(vhat_, n);
 #pragma omp parallel for schedule(static)
       for (size_t i = 0; i < n; ++i) vhat_[i] = fluid_.v[i] + half * fluid_.a[i];
     });

@@ -84,7 +84,8 @@ constexpr uint32_t kStateTag = 0x444C5257;  // "WRLD"
 // kTerrainApplyOverSpacing); older states load at the scene's factor with the bed's time equal to
 // the water's, and wait for none. Version 7 adds the flow record (flow_record.h: the bed time it
 // covers, its tiles and their values); older states load with an empty one, recording from then.
-constexpr uint32_t kStateVersion = 7;
+// Version 8 has the flow record in tiles of 8 × 8 vertices (version 7's of 16 are cut into them).
+constexpr uint32_t kStateVersion = 8;
 
 }  // namespace
 
@@ -239,7 +240,7 @@ void World::loadState(std::istream& in) {
     std::vector<int> tiles;
     std::vector<double> values;
     get(in, recorded, "flow maps"), getVec(in, tiles, "flow maps"), getVec(in, values, "flow maps");
-    flow.restore(terrain_.nx(), terrain_.nz(), recorded, std::move(tiles), std::move(values));
+    flow.restore(terrain_.nx(), terrain_.nz(), recorded, std::move(tiles), std::move(values), version >= 8 ? FlowRecord::kTile : 16);
   }
   f.scratch.clear();
   flow_ = std::move(flow);

@@ -177,11 +177,47 @@ TEST_CASE("a corrupt flow record in a state is refused", "[maps]") {
   FlowRecord r;
   r.reset(40, 40);
   const size_t perTile = 6 * FlowRecord::kTile * FlowRecord::kTile;
-  CHECK_THROWS_WITH(r.restore(40, 40, 1.0, {9}, std::vector<double>(perTile, 0.0)), "state is corrupt (flow maps)");
+  CHECK_THROWS_WITH(r.restore(40, 40, 1.0, {25}, std::vector<double>(perTile, 0.0)), "state is corrupt (flow maps)");
   CHECK_THROWS_WITH(r.restore(40, 40, 1.0, {1, 1}, std::vector<double>(2 * perTile, 0.0)), "state is corrupt (flow maps)");
   CHECK_THROWS_WITH(r.restore(40, 40, 1.0, {1}, std::vector<double>(perTile, -1.0)), "state is corrupt (flow maps)");
   CHECK_THROWS_WITH(r.restore(40, 40, -1.0, {}, {}), "state is corrupt (flow maps)");
   r.restore(40, 40, 2.0, {3}, std::vector<double>(perTile, 0.25));
   CHECK(r.time() == 2.0);
   CHECK(r.tiles() == std::vector<int>{3});
+}
+
+TEST_CASE("a version 7 flow record (tiles of 16 vertices) loads into this build's tiles", "[maps]") {
+  // 40 × 40 vertices: 3 × 3 tiles of 16, the last row and column of them cut by the grid's edge.
+  // Tile 4 (vertices 16–31 along both axes) and tile 8 (32–39) hold values; of tile 4 only the
+  // quarter at x 16–23, z 24–31 is non-zero, so one tile of 8 comes of it.
+  constexpr int kOld = 16, kFields = 6;
+  const size_t oldVertices = kOld * kOld;
+  std::vector<double> values(2 * kFields * oldVertices, 0.0);
+  std::vector<double> expected(size_t(kFields) * 40 * 40, 0.0);  // per field, the dense grid
+  auto put = [&](size_t slot, int ti, int tk, int fl, int row, int col, double value) {
+    values[(slot * kFields + size_t(fl)) * oldVertices + size_t(row * kOld + col)] = value;
+    const int i = ti * kOld + col, k = tk * kOld + row;
+    if (i < 40 && k < 40) expected[size_t(fl) * 1600 + size_t(k) * 40 + size_t(i)] = value;
+  };
+  for (int fl = 0; fl < kFields; ++fl)
+    for (int row = 8; row < 16; ++row)
+      for (int col = 0; col < 8; ++col) put(0, 1, 1, fl, row, col, 1.0 + fl + 0.01 * (row * kOld + col));
+  for (int fl = 0; fl < kFields; ++fl)
+    for (int row = 0; row < 8; ++row)
+      for (int col = 0; col < 8; ++col) put(1, 2, 2, fl, row, col, 2.0 + fl + 0.01 * (row * kOld + col));
+  FlowRecord r;
+  r.restore(40, 40, 3.0, {4, 8}, values, kOld);
+  CHECK(r.time() == 3.0);
+  // Tile 4's quarter, then tile 8's one quarter inside the grid: (x 16, z 24) and (x 32, z 32).
+  CHECK(r.tiles() == std::vector<int>{3 * 5 + 2, 4 * 5 + 4});
+  const std::vector<std::vector<double>> dense = {r.wetTime(), r.flow(), r.flowX(), r.flowZ(), r.shearIntegral(),
+                                                  r.shearPeak()};
+  for (int fl = 0; fl < kFields; ++fl)
+    CHECK(dense[size_t(fl)] == std::vector<double>(expected.begin() + fl * 1600, expected.begin() + (fl + 1) * 1600));
+  // A tile of 16 beyond the grid, or values that do not fill whole tiles of 16, are refused.
+  CHECK_THROWS_WITH(r.restore(40, 40, 1.0, {9}, std::vector<double>(kFields * oldVertices, 0.0), kOld),
+                    "state is corrupt (flow maps)");
+  CHECK_THROWS_WITH(r.restore(40, 40, 1.0, {0}, std::vector<double>(kFields * 64, 0.0), kOld),
+                    "state is corrupt (flow maps)");
+  CHECK(r.time() == 3.0);
 }
