@@ -109,6 +109,9 @@ void exchangePlain(const PairFlux& pair, const NeighborLists& nbrs, const std::v
   const float ci = conc[i], hi = hind[i];
   // dy > 0: i above j. Settling goes down (up when rising): the acceptor is the lower one.
   const float down = rising ? -1.0f : 1.0f;
+  // The sums in registers (through the references, each pair's adds waited on a store), added to
+  // the callers' in the same order.
+  double dSum = d, inSum = in, outSum = out;
   for (uint32_t c = 0; c < count; ++c) {
     const uint32_t j = js[c];
     const float cj = conc[j];
@@ -116,20 +119,23 @@ void exchangePlain(const PairFlux& pair, const NeighborLists& nbrs, const std::v
     const float dy = xij.y();
     const float fr = pair.ratio(xij.norm());
     const PairGeometry g = pair.geometry(std::abs(dy), fr);
-    const bool iDownstream = down * dy < 0.0f, jDownstream = down * dy > 0.0f;
-    const float gainRate = (iDownstream ? g.settle * cj * hi : 0.0f) + (cj > ci ? g.diffuse * (cj - ci) : 0.0f);
-    const float lossRate = (jDownstream ? g.settle * ci * hind[j] : 0.0f) + (ci > cj ? g.diffuse * (ci - cj) : 0.0f);
+    // Which side settles, as 0 or 1 (times a finite non-negative rate: the select's bits), and the
+    // fall of C across the pair as max(·, 0).
+    const float iDownstream = float(down * dy < 0.0f), jDownstream = float(down * dy > 0.0f);
+    const float gainRate = g.settle * cj * hi * iDownstream + g.diffuse * std::max(cj - ci, 0.0f);
+    const float lossRate = g.settle * ci * hind[j] * jDownstream + g.diffuse * std::max(ci - cj, 0.0f);
     const double gain = double(gainRate) * dt, loss = double(lossRate) * dt;
     if constexpr (Scaled) {
-      d += gain * std::min(scale[j].out, scale[i].in);
-      d -= loss * std::min(scale[i].out, scale[j].in);
+      dSum += gain * std::min(scale[j].out, scale[i].in);
+      dSum -= loss * std::min(scale[i].out, scale[j].in);
     } else {
-      d += gain;
-      d -= loss;
+      dSum += gain;
+      dSum -= loss;
     }
-    in += gain;
-    out += loss;
+    inSum += gain;
+    outSum += loss;
   }
+  d = dSum, in = inSum, out = outSum;
 }
 
 // Eq. (20) with the doubled eq. (16) flux: donor fluid particle above a boundary particle (which
