@@ -12,33 +12,6 @@ Heightfield::Heightfield(int nx, int nz, double dx, double dz, double x0, double
 double Heightfield::minHeight() const { return *std::min_element(h_.begin(), h_.end()); }
 double Heightfield::maxHeight() const { return *std::max_element(h_.begin(), h_.end()); }
 
-SurfacePoint Heightfield::surface(double x, double z) const {
-  // A place that is not a number reads the corner cell (clamp would pass NaN through, and the
-  // cell index of NaN reads memory outside the grid): the invariant check then names the particle.
-  auto cellCoordinate = [](double q, int last) { return q > 0.0 ? std::min(q, double(last)) : 0.0; };
-  double fx = cellCoordinate((x - x0_) / dx_, nx_ - 1);
-  double fz = cellCoordinate((z - z0_) / dz_, nz_ - 1);
-  int i = std::min(int(fx), nx_ - 2);
-  int k = std::min(int(fz), nz_ - 2);
-  double u = fx - i, w = fz - k;
-  double h00 = at(i, k), h10 = at(i + 1, k), h01 = at(i, k + 1), h11 = at(i + 1, k + 1);
-  double sx, sz, h;  // slopes dh/dx, dh/dz and height
-  int t;
-  if (u >= w) {
-    sx = (h10 - h00) / dx_;
-    sz = (h11 - h10) / dz_;
-    h = h00 + u * (h10 - h00) + w * (h11 - h10);
-    t = 0;
-  } else {
-    sx = (h11 - h01) / dx_;
-    sz = (h01 - h00) / dz_;
-    h = h00 + w * (h01 - h00) + u * (h11 - h01);
-    t = 1;
-  }
-  Eigen::Vector3d n(-sx, 1.0, -sz);
-  return {h, n.normalized(), 2 * (k * (nx_ - 1) + i) + t};
-}
-
 double pointTriangleDistance(const Eigen::Vector3d& p, const Eigen::Vector3d& a,
                              const Eigen::Vector3d& b, const Eigen::Vector3d& c) {
   const Eigen::Vector3d ab = b - a, ac = c - a, ap = p - a;

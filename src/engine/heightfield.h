@@ -6,6 +6,7 @@
 // Heights are double: the soil budget is kept to rounding.
 
 #include <Eigen/Core>
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <vector>
@@ -48,8 +49,32 @@ class Heightfield {
 
   /// Height, unit normal and triangle of the surface above (x, z); points outside the grid are
   /// clamped to its edge.
-  SurfacePoint surface(double x, double z) const;
-  double heightAt(double x, double z) const { return surface(x, z).height; }
+  /// (Inline, as heightAt: they run several times per particle and step, and heightAt needs no
+  /// normal.)
+  SurfacePoint surface(double x, double z) const {
+    const Cell c = cellAt(x, z);
+    double sx, sz, h;  // slopes dh/dx, dh/dz and height
+    int t;
+    if (c.u >= c.w) {
+      sx = (c.h10 - c.h00) / dx_;
+      sz = (c.h11 - c.h10) / dz_;
+      h = c.h00 + c.u * (c.h10 - c.h00) + c.w * (c.h11 - c.h10);
+      t = 0;
+    } else {
+      sx = (c.h11 - c.h01) / dx_;
+      sz = (c.h01 - c.h00) / dz_;
+      h = c.h00 + c.w * (c.h01 - c.h00) + c.u * (c.h11 - c.h01);
+      t = 1;
+    }
+    const Eigen::Vector3d n(-sx, 1.0, -sz);
+    return {h, n.normalized(), 2 * (c.k * (nx_ - 1) + c.i) + t};
+  }
+  /// surface(x, z).height, to the bit.
+  double heightAt(double x, double z) const {
+    const Cell c = cellAt(x, z);
+    return c.u >= c.w ? c.h00 + c.u * (c.h10 - c.h00) + c.w * (c.h11 - c.h10)
+                      : c.h00 + c.w * (c.h01 - c.h00) + c.u * (c.h11 - c.h01);
+  }
 
   /// Distance from p to the nearest point of a triangle [m].
   double distanceToTriangle(int tri, const Eigen::Vector3d& p) const {
@@ -72,6 +97,22 @@ class Heightfield {
   }
 
  private:
+  /// The cell under (x, z), the place in it and its corners' heights.
+  struct Cell {
+    int i, k;
+    double u, w, h00, h10, h01, h11;
+  };
+  Cell cellAt(double x, double z) const {
+    // A place that is not a number reads the corner cell (clamp would pass NaN through, and the
+    // cell index of NaN reads memory outside the grid): the invariant check then names the particle.
+    auto cellCoordinate = [](double q, int last) { return q > 0.0 ? std::min(q, double(last)) : 0.0; };
+    const double fx = cellCoordinate((x - x0_) / dx_, nx_ - 1);
+    const double fz = cellCoordinate((z - z0_) / dz_, nz_ - 1);
+    const int i = std::min(int(fx), nx_ - 2);
+    const int k = std::min(int(fz), nz_ - 2);
+    return {i, k, fx - i, fz - k, at(i, k), at(i + 1, k), at(i, k + 1), at(i + 1, k + 1)};
+  }
+
   int nx_ = 0, nz_ = 0;
   double dx_ = 1, dz_ = 1, x0_ = 0, z0_ = 0;
   std::vector<double> h_;
