@@ -32,6 +32,7 @@ for f in assets/scenes/*.json assets/scenes/stress/*.json; do  # the built-in sc
 done
 find tests/data/bad -maxdepth 1 -type f -name "*.ckpt" -exec cp {} "$seeds/checkpoint/" \;
 cp tests/fuzz/seeds/replay/* "$seeds/replay/"
+cp tests/fuzz/seeds/heightmap/* "$seeds/heightmap/"  # inputs the fuzzer once found (a GeoTIFF of 32,769 bands)
 for f in tests/data/bad/*.png assets/*.png; do
   { printf '\000\000\000'; head -c 65536 "$f"; } > "$seeds/heightmap/$(basename "$f")"
 done

@@ -86,7 +86,25 @@ GeoRaster readGeoRaster(const std::string& file) {
   GeoRaster r;
   r.width = GDALGetRasterXSize(ds), r.height = GDALGetRasterYSize(ds);
   const long long w = r.width, h = r.height;
-  if (GDALGetRasterCount(ds) < 1) throw TerrainError(file + ": holds no raster band");
+  const int bands = GDALGetRasterCount(ds);
+  if (bands < 1) throw TerrainError(file + ": holds no raster band");
+  {
+    // GDAL decodes a whole block to read one band of it, and a pixel-interleaved block holds every
+    // band: a file of tens of thousands of bands in 256 × 256 blocks asks for gigabytes to read the
+    // first (found by the fuzzer). Scour reads band 1; a block bigger than this is refused.
+    constexpr double kMaxBlockBytes = double(size_t(1) << 30);
+    GDALRasterBandH first = GDALGetRasterBand(ds, 1);
+    int bx = 0, by = 0;
+    GDALGetBlockSize(first, &bx, &by);
+    const char* interleave = GDALGetMetadataItem(ds, "INTERLEAVE", "IMAGE_STRUCTURE");
+    const bool pixel = interleave && std::string(interleave) == "PIXEL";
+    const double block = double(bx) * double(by) * double(GDALGetDataTypeSizeBytes(GDALGetRasterDataType(first))) *
+                         (pixel ? double(bands) : 1.0);
+    if (block > kMaxBlockBytes)
+      throw TerrainError(file + ": " + std::to_string(bands) + " bands in blocks of " + std::to_string(bx) + " x " +
+                         std::to_string(by) + " pixels: reading the first needs " +
+                         std::to_string(static_cast<long long>(block / 1048576.0)) + " MiB (at most 1024)");
+  }
   checkHeightmapSize(file, w, h, double(std::max<size_t>(bytes, 1)), "raster", "the file");
   r.georeference = georeferenceOf(ds);
   GDALRasterBandH band = GDALGetRasterBand(ds, 1);

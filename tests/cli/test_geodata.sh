@@ -131,6 +131,11 @@ refused() {
 # A file GDAL cannot read: GDAL's reason, the file named.
 printf 'not a tiff' > "$tmp/bad.tif"
 refused bad.tif "bad.tif: GDAL cannot read it as elevation data ("
+# Thousands of pixel-interleaved bands: reading band 1 would decode every band of its block (the
+# fuzzer's 32,769 bands in 256 × 256 blocks asked for 8 GiB). Sparse: GDAL writes no block.
+gdal_create -q -of GTiff -outsize 256 256 -bands 4100 -ot Float32 -co TILED=YES -co INTERLEAVE=PIXEL \
+  -co SPARSE_OK=TRUE "$tmp/bands.tif"
+refused bands.tif "bands.tif: 4100 bands in blocks of 256 x 256 pixels: reading the first needs 1025 MiB (at most 1024)"
 # Every pixel NoData.
 python3 -c "
 open('$tmp/empty.asc','w').write('ncols 3\nnrows 3\nxllcorner 0\nyllcorner 0\ncellsize 1\nNODATA_value -9999\n' + '-9999 -9999 -9999\n' * 3)"
