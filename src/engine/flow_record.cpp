@@ -21,13 +21,11 @@ size_t FlowRecord::slotOf(size_t tile) {
   if (slot_[tile] < 0) {
     slot_[tile] = int32_t(tiles_.size());
     tiles_.push_back(int(tile));
-    // Grown by an eighth when full, not doubled: the record's memory follows the wetted area.
-    auto append = [](auto& array, size_t count, auto value) {
-      if (array.size() + count > array.capacity()) array.reserve(array.size() + std::max(count, array.size() / 8));
-      array.resize(array.size() + count, value);
-    };
-    append(values_, size_t(kFields) * kTileVertices, 0.0);
-    append(listed_, size_t(kTileVertices), int32_t(-1));
+    // Grown as reserveWithSlack grows them: the record's memory follows the wetted area.
+    reserveWithSlack(values_, values_.size() + size_t(kFields) * kTileVertices);
+    values_.resize(values_.size() + size_t(kFields) * kTileVertices, 0.0);
+    reserveWithSlack(listed_, listed_.size() + kTileVertices);
+    listed_.resize(listed_.size() + kTileVertices, -1);
   }
   return size_t(slot_[tile]);
 }
@@ -60,7 +58,7 @@ void FlowRecord::record(const Heightfield& hf, const std::vector<double>& vertex
         int32_t& listed = listed_[s];
         if (listed < 0) {
           listed = int32_t(step_.size());
-          if (step_.size() == step_.capacity()) step_.reserve(step_.size() + step_.size() / 8 + 256);
+          reserveWithSlack(step_, step_.size() + 1);
           step_.push_back({0.0, 0.0, 0.0f, uint32_t(s)});
         }
         StepSum& sum = step_[size_t(listed)];
@@ -123,18 +121,16 @@ void FlowRecord::restore(int nx, int nz, double time, std::vector<int> tiles, st
         for (int b = 0; b < per; ++b) {
           const int i0 = (ti * per + b) * kTile, k0 = (tk * per + a) * kTile;
           if (i0 >= nx || k0 >= nz) continue;
-          std::vector<double> cut(size_t(kFields) * kTileVertices);
+          const size_t at = cutValues.size();
           bool any = false;
           for (int fl = 0; fl < kFields; ++fl)
             for (int v = 0; v < kTileVertices; ++v) {
               const size_t row = size_t(a * kTile + v / kTile), col = size_t(b * kTile + v % kTile);
-              const double value = values[(slot * kFields + size_t(fl)) * oldVertices + row * size_t(tile) + col];
-              cut[size_t(fl) * kTileVertices + size_t(v)] = value;
-              any = any || value != 0.0;
+              cutValues.push_back(values[(slot * kFields + size_t(fl)) * oldVertices + row * size_t(tile) + col]);
+              any = any || cutValues.back() != 0.0;
             }
-          if (!any) continue;
-          cutTiles.push_back((k0 / kTile) * r.tilesX_ + i0 / kTile);
-          cutValues.insert(cutValues.end(), cut.begin(), cut.end());
+          if (any) cutTiles.push_back((k0 / kTile) * r.tilesX_ + i0 / kTile);
+          else cutValues.resize(at);
         }
     }
     tiles = std::move(cutTiles), values = std::move(cutValues);

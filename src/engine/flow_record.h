@@ -18,8 +18,9 @@
 //   direction   Σ q Δt_m    [m³/m], a vector (x, z)
 //   shear       Σ τ Δt_m    [Pa s] and the peak τ [Pa]
 // A vertex never covered keeps zeros in all of them. The per-vertex arrays live in tiles of
-// 8 × 8 vertices made on first touch, so their memory follows the water (56 bytes a vertex:
-// the six sums and the place of its sums in this step's list). The particles are
+// 8 × 8 vertices made on first touch, so their memory follows the water (52 bytes a vertex:
+// the six sums and the place of its sums in this step's list; 24 more for each vertex a step
+// touches). The particles are
 // visited in index order by one thread: the sums are the same at any thread count.
 
 #include <cstdint>

@@ -14,12 +14,17 @@ namespace scour {
 
 using Vec3f = Eigen::Vector3f;
 
-/// Makes a per-particle array n long; when it must grow, with room for an eighth more (a source adds
-/// a few particles a step: resize alone would double it, and the slack is memory every particle
-/// pays for).
+/// Room for `need` elements; when the array must grow, an eighth more than that, not twice its size
+/// (what push_back and resize do). The engine's arrays grow by a few elements a step (a source's
+/// particles, the lists, the wetted tiles), and their slack is memory every particle pays for.
+template <class Array>
+inline void reserveWithSlack(Array& array, size_t need) {
+  if (need > array.capacity()) array.reserve(need + need / 8 + 64);
+}
+/// Makes a per-particle array n long, growing it as reserveWithSlack does.
 template <class Array>
 inline void resizeForParticles(Array& array, size_t n) {
-  if (n > array.capacity()) array.reserve(n + n / 8 + 64);
+  reserveWithSlack(array, n);
   array.resize(n);
 }
 
@@ -49,12 +54,11 @@ struct Fluid {
   }
 
   /// A new particle: every array gets a zero, then its place, velocity, id and density. A full
-  /// array grows by an eighth, not twice its size: a source adds a few particles a step, and the
-  /// arrays' slack is memory every particle pays for (the Z-order reorder trims it again).
+  /// array grows as reserveWithSlack does (the Z-order reorder trims it again).
   void push(const Vec3f& pos, const Vec3f& vel, uint32_t ident, float density) {
     forEachArray([](const char*, auto& array) {
       using T = typename std::remove_reference_t<decltype(array)>::value_type;
-      if (array.size() == array.capacity()) array.reserve(array.size() + array.size() / 8 + 64);
+      reserveWithSlack(array, array.size() + 1);
       if constexpr (std::is_arithmetic_v<T>) array.push_back(T(0));
       else array.push_back(T::Zero());
     });

@@ -53,28 +53,15 @@ class Heightfield {
   /// normal.)
   SurfacePoint surface(double x, double z) const {
     const Cell c = cellAt(x, z);
-    double sx, sz, h;  // slopes dh/dx, dh/dz and height
-    int t;
-    if (c.u >= c.w) {
-      sx = (c.h10 - c.h00) / dx_;
-      sz = (c.h11 - c.h10) / dz_;
-      h = c.h00 + c.u * (c.h10 - c.h00) + c.w * (c.h11 - c.h10);
-      t = 0;
-    } else {
-      sx = (c.h11 - c.h01) / dx_;
-      sz = (c.h01 - c.h00) / dz_;
-      h = c.h00 + c.w * (c.h01 - c.h00) + c.u * (c.h11 - c.h01);
-      t = 1;
-    }
+    const bool lower = c.u >= c.w;  // triangle 0 of the cell (else 1)
+    // Slopes dh/dx and dh/dz of the triangle.
+    const double sx = lower ? (c.h10 - c.h00) / dx_ : (c.h11 - c.h01) / dx_;
+    const double sz = lower ? (c.h11 - c.h10) / dz_ : (c.h01 - c.h00) / dz_;
     const Eigen::Vector3d n(-sx, 1.0, -sz);
-    return {h, n.normalized(), 2 * (c.k * (nx_ - 1) + c.i) + t};
+    return {heightIn(c), n.normalized(), 2 * (c.k * (nx_ - 1) + c.i) + (lower ? 0 : 1)};
   }
   /// surface(x, z).height, to the bit.
-  double heightAt(double x, double z) const {
-    const Cell c = cellAt(x, z);
-    return c.u >= c.w ? c.h00 + c.u * (c.h10 - c.h00) + c.w * (c.h11 - c.h10)
-                      : c.h00 + c.w * (c.h01 - c.h00) + c.u * (c.h11 - c.h01);
-  }
+  double heightAt(double x, double z) const { return heightIn(cellAt(x, z)); }
 
   /// Distance from p to the nearest point of a triangle [m].
   double distanceToTriangle(int tri, const Eigen::Vector3d& p) const {
@@ -111,6 +98,11 @@ class Heightfield {
     const int i = std::min(int(fx), nx_ - 2);
     const int k = std::min(int(fz), nz_ - 2);
     return {i, k, fx - i, fz - k, at(i, k), at(i + 1, k), at(i, k + 1), at(i + 1, k + 1)};
+  }
+  /// The height at the cell's place, on its triangle.
+  static double heightIn(const Cell& c) {
+    return c.u >= c.w ? c.h00 + c.u * (c.h10 - c.h00) + c.w * (c.h11 - c.h10)
+                      : c.h00 + c.w * (c.h01 - c.h00) + c.u * (c.h11 - c.h01);
   }
 
   int nx_ = 0, nz_ = 0;

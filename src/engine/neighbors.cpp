@@ -124,17 +124,6 @@ std::vector<uint32_t> Grid::zOrder(const std::vector<Vec3f>& x) const {
   return order;
 }
 
-namespace {
-// A list chunk too short for what comes next grows by an eighth (resize alone would double its
-// capacity): its size is the high-water mark the next builds reuse, and its slack is memory every
-// particle pays for.
-void grow(std::vector<uint32_t>& chunk, size_t need) {
-  const size_t size = std::max(need, chunk.size() + chunk.size() / 8);
-  chunk.reserve(size);
-  chunk.resize(size);
-}
-}  // namespace
-
 template <class Gather>
 void NeighborLists::fill(size_t n, Gather&& gather) {
   resizeForParticles(first_, n);
@@ -157,12 +146,7 @@ void NeighborLists::fill(size_t n, Gather&& gather) {
     }
     // Lists that shrank by more than an eighth (the water spread out since the high-water mark)
     // give the rest back, keeping a sixteenth for the next builds to grow into.
-    if (chunk.size() > end + end / 8 + 4096) {
-      std::vector<uint32_t> fit(chunk.begin(), chunk.begin() + long(end));
-      fit.reserve(end + end / 16);
-      fit.resize(end + end / 16);
-      chunk.swap(fit);
-    }
+    if (chunk.size() > end + end / 8 + 4096) chunk.resize(end + end / 16), chunk.shrink_to_fit();
     const uint32_t* p = chunk.data();
     for (size_t i = b; i < e; ++i) {
       first_[i] = p;
@@ -202,7 +186,9 @@ void NeighborLists::build(const Grid& grid, const std::vector<Vec3f>& x,
     }
     // Without a branch: every candidate is written, and the end moves past it when it is a
     // neighbor (a branch on it mispredicted too often).
-    if (chunk.size() < at + rows.candidates) grow(chunk, at + rows.candidates);
+    // A chunk too short grows as reserveWithSlack does; its size is the high-water mark the next
+    // builds reuse.
+    if (chunk.size() < at + rows.candidates) reserveWithSlack(chunk, at + rows.candidates), chunk.resize(chunk.capacity());
     uint32_t* const base = chunk.data();
     uint32_t* out = base + at;
     for (int q = 0; q < rows.count; ++q)
