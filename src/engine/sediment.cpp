@@ -5,6 +5,9 @@
 #include <cmath>
 
 #include <omp.h>
+#if defined(__SSE2__)
+#include <immintrin.h>
+#endif
 
 namespace scour {
 
@@ -102,7 +105,7 @@ template <bool Scaled>
 void exchangePlain(const PairFlux& pair, const NeighborLists& nbrs, const std::vector<Vec3f>& x,
                    const std::vector<float>& conc, const std::vector<float>& hind,
                    const std::vector<SedimentWorkspace::Scales>& scale, bool rising, double dt,
-                   size_t i, double& d, double& in, double& out) {
+                   size_t i, double& d, double& in, double& out, uint32_t first = 0) {
   const uint32_t* js = nbrs.begin(i);
   const uint32_t count = nbrs.count(i);
   const Vec3f xi = x[i];
@@ -112,7 +115,7 @@ void exchangePlain(const PairFlux& pair, const NeighborLists& nbrs, const std::v
   // The sums in registers (through the references, each pair's adds waited on a store), added to
   // the callers' in the same order.
   double dSum = d, inSum = in, outSum = out;
-  for (uint32_t c = 0; c < count; ++c) {
+  for (uint32_t c = first; c < count; ++c) {
     const uint32_t j = js[c];
     const float cj = conc[j];
     const Vec3f xij = xi - x[j];
@@ -137,6 +140,74 @@ void exchangePlain(const PairFlux& pair, const NeighborLists& nbrs, const std::v
   }
   d = dSum, in = inSum, out = outSum;
 }
+
+#if defined(__SSE2__)
+// exchangePlain<false> four pairs at a time: the same float operations, operand for operand and
+// in the same order, on four lanes (SSE's arithmetic is IEEE's, lane by lane, and no FMA is
+// contracted at this target), then each pair's double adds in list order, so the same bits as the
+// scalar loop, which takes the last count % 4 pairs.
+void exchangePlainSse(const PairFlux& pair, const NeighborLists& nbrs, const std::vector<Vec3f>& x,
+                      const std::vector<float>& conc, const std::vector<float>& hind, bool rising,
+                      double dt, size_t i, double& d, double& in, double& out) {
+  const uint32_t* js = nbrs.begin(i);
+  const uint32_t count = nbrs.count(i);
+  const Vec3f xi = x[i];
+  const float ci = conc[i], hi = hind[i];
+  const __m128 xix = _mm_set1_ps(xi.x()), xiy = _mm_set1_ps(xi.y()), xiz = _mm_set1_ps(xi.z());
+  const __m128 cI = _mm_set1_ps(ci), hI = _mm_set1_ps(hi), down = _mm_set1_ps(rising ? -1.0f : 1.0f);
+  const __m128 zero = _mm_setzero_ps(), one = _mm_set1_ps(1.0f), two = _mm_set1_ps(2.0f);
+  const __m128 invHm = _mm_set1_ps(pair.invHm), fCoef = _mm_set1_ps(pair.fCoef);
+  const __m128 fOuter = _mm_set1_ps(pair.fCoef * 0.75f);
+  const __m128 three = _mm_set1_ps(3.0f), quad = _mm_set1_ps(2.25f);
+  const __m128 kSettle = _mm_set1_ps(pair.kSettle), kDiffuse = _mm_set1_ps(pair.kDiffuse);
+  const __m128 absMask = _mm_castsi128_ps(_mm_set1_epi32(0x7fffffff));
+  const __m128d dtv = _mm_set1_pd(dt);
+  double dSum = d, inSum = in, outSum = out;
+  uint32_t c = 0;
+  for (; c + 4 <= count; c += 4) {
+    const Vec3f &x0 = x[js[c]], &x1 = x[js[c + 1]], &x2 = x[js[c + 2]], &x3 = x[js[c + 3]];
+    const __m128 dx = _mm_sub_ps(xix, _mm_setr_ps(x0.x(), x1.x(), x2.x(), x3.x()));
+    const __m128 dy = _mm_sub_ps(xiy, _mm_setr_ps(x0.y(), x1.y(), x2.y(), x3.y()));
+    const __m128 dz = _mm_sub_ps(xiz, _mm_setr_ps(x0.z(), x1.z(), x2.z(), x3.z()));
+    const __m128 cJ = _mm_setr_ps(conc[js[c]], conc[js[c + 1]], conc[js[c + 2]], conc[js[c + 3]]);
+    const __m128 hJ = _mm_setr_ps(hind[js[c]], hind[js[c + 1]], hind[js[c + 2]], hind[js[c + 3]]);
+    // r as Eigen's norm: sqrt(x² + (y² + z²)).
+    const __m128 r = _mm_sqrt_ps(_mm_add_ps(_mm_mul_ps(dx, dx), _mm_add_ps(_mm_mul_ps(dy, dy), _mm_mul_ps(dz, dz))));
+    // PairFlux::ratio.
+    const __m128 q = _mm_mul_ps(r, invHm), t = _mm_sub_ps(two, q);
+    const __m128 inner = _mm_mul_ps(fCoef, _mm_sub_ps(_mm_mul_ps(three, q), _mm_mul_ps(_mm_mul_ps(quad, q), q)));
+    const __m128 outer = _mm_mul_ps(_mm_mul_ps(fOuter, t), t);
+    const __m128 isInner = _mm_cmplt_ps(q, one), isOuter = _mm_andnot_ps(isInner, _mm_cmplt_ps(q, two));
+    const __m128 f = _mm_or_ps(_mm_and_ps(isInner, inner), _mm_and_ps(isOuter, outer));
+    const __m128 apart = _mm_cmpgt_ps(r, zero);
+    const __m128 denom = _mm_or_ps(_mm_and_ps(apart, r), _mm_andnot_ps(apart, one));
+    const __m128 fr = _mm_and_ps(apart, _mm_div_ps(f, denom));
+    // PairFlux::geometry, then exchangePlain's rates.
+    const __m128 settle = _mm_mul_ps(_mm_mul_ps(kSettle, _mm_and_ps(dy, absMask)), fr);
+    const __m128 diffuse = _mm_mul_ps(kDiffuse, fr);
+    const __m128 along = _mm_mul_ps(down, dy);
+    const __m128 iDown = _mm_and_ps(_mm_cmplt_ps(along, zero), one);
+    const __m128 jDown = _mm_and_ps(_mm_cmpgt_ps(along, zero), one);
+    const __m128 gainRate = _mm_add_ps(_mm_mul_ps(_mm_mul_ps(_mm_mul_ps(settle, cJ), hI), iDown),
+                                       _mm_mul_ps(diffuse, _mm_max_ps(zero, _mm_sub_ps(cJ, cI))));
+    const __m128 lossRate = _mm_add_ps(_mm_mul_ps(_mm_mul_ps(_mm_mul_ps(settle, cI), hJ), jDown),
+                                       _mm_mul_ps(diffuse, _mm_max_ps(zero, _mm_sub_ps(cI, cJ))));
+    alignas(16) double gain[4], loss[4];
+    _mm_store_pd(gain, _mm_mul_pd(_mm_cvtps_pd(gainRate), dtv));
+    _mm_store_pd(gain + 2, _mm_mul_pd(_mm_cvtps_pd(_mm_movehl_ps(gainRate, gainRate)), dtv));
+    _mm_store_pd(loss, _mm_mul_pd(_mm_cvtps_pd(lossRate), dtv));
+    _mm_store_pd(loss + 2, _mm_mul_pd(_mm_cvtps_pd(_mm_movehl_ps(lossRate, lossRate)), dtv));
+    for (int l = 0; l < 4; ++l) {
+      dSum += gain[l];
+      dSum -= loss[l];
+      inSum += gain[l];
+      outSum += loss[l];
+    }
+  }
+  d = dSum, in = inSum, out = outSum;
+  if (c < count) exchangePlain<false>(pair, nbrs, x, conc, hind, {}, rising, dt, i, d, in, out, c);
+}
+#endif
 
 // Eq. (20) with the doubled eq. (16) flux: donor fluid particle above a boundary particle (which
 // holds no sediment, f = 1).
@@ -215,7 +286,11 @@ void transferSediment(const SedimentConstants& k, const SedimentEffects& fx,
         if (plain && scaled)
           exchangePlain<true>(pair, nbrs, f.x, conc, hind, scale, rising, dt, i, d, in, out);
         else if (plain)
+#if defined(__SSE2__)
+          exchangePlainSse(pair, nbrs, f.x, conc, hind, rising, dt, i, d, in, out);
+#else
           exchangePlain<false>(pair, nbrs, f.x, conc, hind, scale, rising, dt, i, d, in, out);
+#endif
         else
           for (uint32_t c = 0; c < nbrs.count(i); ++c) {
             const uint32_t j = js[c];
