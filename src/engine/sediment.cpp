@@ -209,13 +209,66 @@ void exchangePlainSse(const PairFlux& pair, const NeighborLists& nbrs, const std
 }
 #endif
 
-// Eq. (20) with the doubled eq. (16) flux: donor fluid particle above a boundary particle (which
-// holds no sediment, f = 1).
-double depositFlux(const SedimentConstants& k, double cd, double dy, double r) {
-  // Grains lighter than water rise (v_s < 0): they never reach the bed below.
-  if (r <= 0.0 || dy <= 0.0 || cd <= 0.0 || k.vs0 <= 0.0) return 0.0;
-  return 2.0 * k.volume * k.volume * cd * k.vs0 * (dy / r) * (-k.spline.F(r));
-}
+// Eq. (20) with the doubled eq. (16) flux over one fluid particle's boundary pairs: a donor fluid
+// particle above a boundary particle (which holds no sediment, f = 1) gives it
+// 2 V² C_d v_s (dy/r) |F(r)| Δt · L_b²/Δs², passed to `add(bj, v)` in list order for v > 0 only.
+// Two pairs at a time (SSE2's double arithmetic is IEEE's, lane by lane), the rest one by one
+// with the same operations in the same order, so the result does not depend on where a pair sits.
+struct Deposition {
+  double twoVV, vs0, hm, inner, outer, dt, perArea;
+  Deposition(const SedimentConstants& k, double dt)
+      : twoVV(2.0 * k.volume * k.volume),
+        vs0(k.vs0),
+        hm(k.spline.hm),
+        inner(k.spline.sigma / k.spline.hm),
+        outer(-k.spline.sigma / k.spline.hm * 0.75),
+        dt(dt),
+        perArea(k.per_area) {}
+  template <class Add>
+  void pairs(const NeighborLists& bnbrs, const Vec3f& xi, const BoundaryParticles& b, size_t i, double cd,
+             Add&& add) const {
+    // Grains lighter than water rise (v_s < 0): they never reach the bed below.
+    if (cd <= 0.0 || vs0 <= 0.0) return;
+    const uint32_t* js = bnbrs.begin(i);
+    const uint32_t count = bnbrs.count(i);
+    const double P = twoVV * cd * vs0;
+    uint32_t c = 0;
+#if defined(__SSE2__)
+    const __m128d vP = _mm_set1_pd(P), vHm = _mm_set1_pd(hm), vInner = _mm_set1_pd(inner);
+    const __m128d vOuter = _mm_set1_pd(outer), vDt = _mm_set1_pd(dt), vPerArea = _mm_set1_pd(perArea);
+    const __m128d zero = _mm_setzero_pd(), one = _mm_set1_pd(1.0), two = _mm_set1_pd(2.0);
+    const __m128d minusThree = _mm_set1_pd(-3.0), quad = _mm_set1_pd(2.25), sign = _mm_set1_pd(-0.0);
+    for (; c + 2 <= count; c += 2) {
+      const uint32_t j0 = js[c], j1 = js[c + 1];
+      const Vec3f x0 = xi - b.x[j0], x1 = xi - b.x[j1];
+      const __m128d r = _mm_setr_pd(double(x0.norm()), double(x1.norm()));
+      const __m128d dy = _mm_setr_pd(double(x0.y()), double(x1.y()));
+      const __m128d q = _mm_div_pd(r, vHm), t = _mm_sub_pd(two, q);
+      const __m128d in = _mm_mul_pd(vInner, _mm_add_pd(_mm_mul_pd(minusThree, q), _mm_mul_pd(_mm_mul_pd(quad, q), q)));
+      const __m128d out = _mm_mul_pd(_mm_mul_pd(vOuter, t), t);
+      const __m128d isInner = _mm_cmplt_pd(q, one), isOuter = _mm_andnot_pd(isInner, _mm_cmplt_pd(q, two));
+      const __m128d F = _mm_or_pd(_mm_and_pd(isInner, in), _mm_and_pd(isOuter, out));
+      const __m128d flux = _mm_mul_pd(_mm_mul_pd(vP, _mm_div_pd(dy, r)), _mm_xor_pd(F, sign));
+      const __m128d area = _mm_mul_pd(_mm_setr_pd(b.area[j0], b.area[j1]), vPerArea);
+      const __m128d valid = _mm_and_pd(_mm_cmpgt_pd(r, zero), _mm_cmpgt_pd(dy, zero));
+      alignas(16) double v[2];
+      _mm_store_pd(v, _mm_and_pd(valid, _mm_mul_pd(_mm_mul_pd(flux, vDt), area)));
+      if (v[0] > 0.0) add(j0, v[0]);
+      if (v[1] > 0.0) add(j1, v[1]);
+    }
+#endif
+    for (; c < count; ++c) {
+      const uint32_t j = js[c];
+      const Vec3f xib = xi - b.x[j];
+      const double r = double(xib.norm()), dy = double(xib.y());
+      if (r <= 0.0 || dy <= 0.0) continue;
+      const double q = r / hm;
+      const double F = q >= 2.0 ? 0.0 : (q < 1.0 ? inner * (-3.0 * q + 2.25 * q * q) : outer * (2.0 - q) * (2.0 - q));
+      const double v = P * (dy / r) * (-F) * dt * (b.area[j] * perArea);
+      if (v > 0.0) add(j, v);
+    }
+  }
+};
 
 // Per-thread lists of (boundary particle, volume) for contiguous particle blocks; replayed in
 // thread order they are in particle order, whatever the thread count. Each volume goes to its
@@ -246,6 +299,7 @@ void transferSediment(const SedimentConstants& k, const SedimentEffects& fx,
   // Naive advection: ds_i = V Δt v_s0 f(C_i) ∂C/∂y, ∂C/∂y = Σ_j V (C_j − C_i) F dy/r (F = −|F|).
   const double naiveCoef = naive ? V * V * k.vs0 : 0.0;
   const bool deposit = fx.deposition && bnbrs.size() == n;
+  const Deposition depositing(k, dt);
   std::vector<float>& conc = ws.conc;
   std::vector<float>& hind = ws.hind;
   std::vector<SedimentWorkspace::Scales>& scale = ws.scale;
@@ -317,11 +371,10 @@ void transferSediment(const SedimentConstants& k, const SedimentEffects& fx,
         // −v_s·∇C as a rate of C_i (the study's naive baseline): not a pairwise flux.
         if (naive) d -= naiveCoef * double(hind[i]) * grad * dt;
         if (deposit && ci > 0.0f) {
-          forEachNeighbor(bnbrs, f.x, b.x, i, [&](uint32_t bj, const Vec3f& xib, float r) {
-            // Weighed by L_b²/Δs² (model.md): deposition per area, however finely sampled.
-            const double v = depositFlux(k, f.sed[i] / V, double(xib.y()), double(r)) * dt * (b.area[bj] * k.per_area);
-            if (v <= 0.0) return;
-            const double given = scaled ? v * scale[i].out : v;
+          // Weighed by L_b²/Δs² (model.md): deposition per area, however finely sampled.
+          const double keep = scaled ? scale[i].out : 1.0;
+          depositing.pairs(bnbrs, f.x[i], b, i, f.sed[i] / V, [&](uint32_t bj, double v) {
+            const double given = scaled ? v * keep : v;
             d -= given;
             out += v;
             mine.emplace_back(bj, given);
