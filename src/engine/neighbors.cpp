@@ -1,6 +1,9 @@
 #include "engine/neighbors.h"
 
 #include <omp.h>
+#if defined(__SSE2__)
+#include <immintrin.h>
+#endif
 
 #include <algorithm>
 #include <cmath>
@@ -88,6 +91,7 @@ void Grid::binOther(const std::vector<Vec3f>& y, std::vector<uint32_t>& start,
                     std::vector<uint32_t>& sorted) const {
   const size_t cells = size_t(dims_.x()) * dims_.y() * dims_.z();
   std::vector<int64_t> cellIdx(y.size(), -1);
+#pragma omp parallel for schedule(static)
   for (size_t i = 0; i < y.size(); ++i) {
     Eigen::Vector3i c = cellOf(y[i]);
     if (inside(c.x(), c.y(), c.z())) cellIdx[i] = linear(c.x(), c.y(), c.z());
@@ -125,7 +129,7 @@ std::vector<uint32_t> Grid::zOrder(const std::vector<Vec3f>& x) const {
 }
 
 template <class Gather>
-void NeighborLists::fill(size_t n, Gather&& gather) {
+void NeighborLists::fill(size_t n, const uint32_t* order, Gather&& gather) {
   resizeForParticles(first_, n);
   resizeForParticles(count_, n);
 #pragma omp parallel
@@ -139,7 +143,8 @@ void NeighborLists::fill(size_t n, Gather&& gather) {
     // (never zero-filling what it keeps), and returns the list's new end.
     size_t end = 0;
     const size_t b = blockBegin(n, threads, t), e = blockBegin(n, threads, t + 1);
-    for (size_t i = b; i < e; ++i) {
+    for (size_t k = b; k < e; ++k) {
+      const size_t i = order ? order[k] : k;
       const size_t after = gather(i, chunk, end);
       count_[i] = uint32_t(after - end);
       end = after;
@@ -148,7 +153,8 @@ void NeighborLists::fill(size_t n, Gather&& gather) {
     // give the rest back, keeping a sixteenth for the next builds to grow into.
     if (chunk.size() > end + end / 8 + 4096) chunk.resize(end + end / 16), chunk.shrink_to_fit();
     const uint32_t* p = chunk.data();
-    for (size_t i = b; i < e; ++i) {
+    for (size_t k = b; k < e; ++k) {
+      const size_t i = order ? order[k] : k;
       first_[i] = p;
       p += count_[i];
     }
@@ -158,12 +164,18 @@ void NeighborLists::fill(size_t n, Gather&& gather) {
 void NeighborLists::build(const Grid& grid, const std::vector<Vec3f>& x,
                           const std::vector<Vec3f>& y, const std::vector<uint32_t>& start,
                           const std::vector<uint32_t>& sorted, float r, bool self,
-                          std::vector<Vec3f>& inCellOrder) {
+                          std::vector<float>& inCellOrder) {
   const float r2 = r * r;
-  resizeForParticles(inCellOrder, sorted.size());
+  const size_t m = sorted.size();
+  resizeForParticles(inCellOrder, 3 * m);
+  float* const X = inCellOrder.data();
+  float* const Y = X + m;
+  float* const Z = Y + m;
 #pragma omp parallel for schedule(static)
-  for (size_t k = 0; k < sorted.size(); ++k) inCellOrder[k] = y[sorted[k]];
-  const Vec3f* ys = inCellOrder.data();
+  for (size_t k = 0; k < m; ++k) {
+    const Vec3f& p = y[sorted[k]];
+    X[k] = p.x(), Y[k] = p.y(), Z[k] = p.z();
+  }
   // Particles in Z-order come in runs of one cell: the rows of cells around a cell are found once
   // for the run (each thread its own).
   struct alignas(64) Rows {  // a cache line or more each: no thread writes into another's line
@@ -173,7 +185,13 @@ void NeighborLists::build(const Grid& grid, const std::vector<Vec3f>& x,
     uint32_t candidates = 0;
   };
   std::vector<Rows> rowsOf(static_cast<size_t>(omp_get_max_threads()));
-  fill(x.size(), [&](size_t i, std::vector<uint32_t>& chunk, size_t at) {
+  // Particles taken cell by cell when the grid holds x (its sorted points are a permutation of
+  // x's indices), so each thread finds a cell's rows once for all its particles (in index order
+  // about a third of the particles begin a new run of cells: the Z-order is only redone every
+  // few steps); any other x is taken in index order. The rows are those of each particle's own
+  // cell either way, so the lists are the same.
+  const uint32_t* order = grid.sorted().size() == x.size() ? grid.sorted().data() : nullptr;
+  fill(x.size(), order, [&](size_t i, std::vector<uint32_t>& chunk, size_t at) {
     const Vec3f xi = x[i];
     Rows& rows = rowsOf[size_t(omp_get_thread_num())];
     const Eigen::Vector3i c = grid.cellOf(xi);
@@ -191,12 +209,35 @@ void NeighborLists::build(const Grid& grid, const std::vector<Vec3f>& x,
     if (chunk.size() < at + rows.candidates) reserveWithSlack(chunk, at + rows.candidates), chunk.resize(chunk.capacity());
     uint32_t* const base = chunk.data();
     uint32_t* out = base + at;
-    for (int q = 0; q < rows.count; ++q)
-      for (uint32_t k = rows.begin[q]; k < rows.end[q]; ++k) {
+    // |x_i − y_k|² as Eigen's squaredNorm, dx² + (dy² + dz²): the same pairs as Vec3f's.
+    auto near = [&](uint32_t k) {
+      const float dx = xi.x() - X[k], dy = xi.y() - Y[k], dz = xi.z() - Z[k];
+      return dx * dx + (dy * dy + dz * dz) < r2;
+    };
+    for (int q = 0; q < rows.count; ++q) {
+      uint32_t k = rows.begin[q];
+      const uint32_t e = rows.end[q];
+#if defined(__SSE2__)
+      // Four candidates at a time (SSE's arithmetic is IEEE's lane by lane: `near`'s bits).
+      const __m128 xx = _mm_set1_ps(xi.x()), xy = _mm_set1_ps(xi.y()), xz = _mm_set1_ps(xi.z()), rr = _mm_set1_ps(r2);
+      for (; k + 4 <= e; k += 4) {
+        const __m128 dx = _mm_sub_ps(xx, _mm_loadu_ps(X + k)), dy = _mm_sub_ps(xy, _mm_loadu_ps(Y + k));
+        const __m128 dz = _mm_sub_ps(xz, _mm_loadu_ps(Z + k));
+        const __m128 d2 = _mm_add_ps(_mm_mul_ps(dx, dx), _mm_add_ps(_mm_mul_ps(dy, dy), _mm_mul_ps(dz, dz)));
+        const unsigned inside = unsigned(_mm_movemask_ps(_mm_cmplt_ps(d2, rr)));
+        for (uint32_t l = 0; l < 4; ++l) {
+          const uint32_t j = sorted[k + l];
+          *out = j;
+          out += ((inside >> l) & 1u) & unsigned(!(self && j == i));
+        }
+      }
+#endif
+      for (; k < e; ++k) {
         const uint32_t j = sorted[k];
         *out = j;
-        out += ((xi - ys[k]).squaredNorm() < r2) & !(self && j == i);
+        out += near(k) & !(self && j == i);
       }
+    }
     return size_t(out - base);
   });
 }
@@ -205,7 +246,7 @@ void NeighborLists::build(const KdTree& tree, const std::vector<Vec3f>& x, float
   static const std::vector<Vec3f> kNone;
   const std::vector<Vec3f>& y = tree.points() ? *tree.points() : kNone;
   const float r2 = r * r;
-  fill(x.size(), [&](size_t i, std::vector<uint32_t>& chunk, size_t at) {
+  fill(x.size(), nullptr, [&](size_t i, std::vector<uint32_t>& chunk, size_t at) {
     chunk.resize(at);
     if (y.empty()) return at;
     const Vec3f xi = x[i];
@@ -333,7 +374,7 @@ const Grid& Neighborhood::rebuildGrid(const std::vector<Vec3f>& x, float h) {
 size_t Neighborhood::bytes() const {
   return grid_.bytes() + fluidTree_.bytes() + boundaryTree_.bytes() + fluid_.bytes() +
          boundary_.bytes() + (boundaryStart_.capacity() + boundarySorted_.capacity()) * sizeof(uint32_t) +
-         inCellOrder_.capacity() * sizeof(Vec3f);
+         inCellOrder_.capacity() * sizeof(float);
 }
 
 }  // namespace scour

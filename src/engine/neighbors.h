@@ -123,15 +123,16 @@ class KdTree {
 class NeighborLists {
  public:
   /// Neighbors j ≠ i of each x[i] among `x` (self = true) or among the points binned in
-  /// (start, sorted) with positions y, within radius r. `inCellOrder` is scratch: y copied in the
-  /// order of `sorted`, so the candidates of a row of cells are read one after the other.
+  /// (start, sorted) with positions y, within radius r. `inCellOrder` is scratch: y's x, y and z
+  /// coordinates, each in the order of `sorted` (three blocks of sorted.size()), so the candidates
+  /// of a row of cells are read one after the other, four at a time.
   void build(const Grid& grid, const std::vector<Vec3f>& x, const std::vector<Vec3f>& y,
              const std::vector<uint32_t>& start, const std::vector<uint32_t>& sorted, float r,
-             bool self, std::vector<Vec3f>& inCellOrder);
+             bool self, std::vector<float>& inCellOrder);
   void build(const Grid& grid, const std::vector<Vec3f>& x, const std::vector<Vec3f>& y,
              const std::vector<uint32_t>& start, const std::vector<uint32_t>& sorted, float r,
              bool self) {
-    std::vector<Vec3f> scratch;
+    std::vector<float> scratch;
     build(grid, x, y, start, sorted, r, self, scratch);
   }
   /// The same sets from a kd-tree over y (= tree.points()), each list in ascending index.
@@ -144,11 +145,12 @@ class NeighborLists {
   size_t bytes() const;
 
  private:
-  /// Runs gather(i, chunk, end) for the particles of each thread's block, in ascending i; gather
-  /// writes i's neighbors into the chunk from index `end` on (growing it if it must: its size is
-  /// a high-water mark, not the lists' end) and returns their new end.
+  /// Runs gather(i, chunk, end) for i = order[k] (or k, with no order), each thread a block of
+  /// ascending k; gather writes i's neighbors into the chunk from index `end` on (growing it if it
+  /// must: its size is a high-water mark, not the lists' end) and returns their new end. The
+  /// order only places the lists in the chunks: each list is the same in any order.
   template <class Gather>
-  void fill(size_t n, Gather&& gather);
+  void fill(size_t n, const uint32_t* order, Gather&& gather);
 
   std::vector<std::vector<uint32_t>> chunks_;
   std::vector<const uint32_t*> first_;
@@ -196,7 +198,7 @@ class Neighborhood {
   KdTree fluidTree_, boundaryTree_;
   NeighborLists fluid_, boundary_;
   std::vector<uint32_t> boundaryStart_, boundarySorted_;  ///< the boundary particles binned
-  std::vector<Vec3f> inCellOrder_;  ///< the build's scratch (NeighborLists::build)
+  std::vector<float> inCellOrder_;  ///< the build's scratch (NeighborLists::build)
 };
 
 /// A fixed partition of [0, n) into `parts` ranges, independent of the thread count.
