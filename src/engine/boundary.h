@@ -10,8 +10,9 @@
 //    every terrain as above): the cells are grouped into blocks of b × b (b = round(Δs / cell), at most a
 //    tile; clipped at the tile's edge), and one particle at the block's centre, on the terrain,
 //    stands for the block's area; what it exchanges with the water is spread over the block's
-//    triangles in equal parts (their projected areas are equal), so the soil budget stays exact
-//    to rounding and the terrain keeps its finer detail. A block too steep for one particle
+//    triangles in equal parts (their projected areas are equal) when the terrain takes it
+//    (TerrainAccumulator banks it whole until then), so the soil budget stays exact to rounding
+//    and the terrain keeps its finer detail. A block too steep for one particle
 //    (round(√(3D area) / Δs) ≥ 2) is sampled triangle by triangle as above.
 //
 // Sparse by design: the terrain is cut into square tiles of kTileCells × kTileCells cells, and
@@ -51,18 +52,6 @@ struct BoundaryParticles {
     auto copy = [&](auto& to, const auto& src) { to.insert(to.end(), src.begin() + long(first), src.begin() + long(last)); };
     copy(x, from.x), copy(triangle, from.triangle), copy(area, from.area), copy(bary, from.bary);
     copy(patch, from.patch), copy(extent, from.extent);
-  }
-  /// Calls add(triangle, volume) for the triangles particle j stands for, `v` shared by area.
-  template <class Add>
-  void spread(size_t j, double v, Add&& add) const {
-    if (patch[j] < 0) return add(triangle[j], v);
-    const int bx = extent[j] & 15, bz = extent[j] >> 4;
-    const double part = v / (2.0 * bx * bz);
-    for (int k = 0; k < bz; ++k)
-      for (int i = 0; i < bx; ++i) {
-        const int cell = patch[j] + k * cellsX + i;
-        add(2 * cell, part), add(2 * cell + 1, part);
-      }
   }
 };
 

@@ -553,44 +553,58 @@ std::vector<int> applyTerrainChange(Heightfield& hf, const std::vector<double>& 
   if (acc.vertexMark.size() != hf.heights().size()) acc.vertexMark.assign(hf.heights().size(), 0u), acc.epoch = 0;
   if (++acc.epoch == 0) std::fill(acc.vertexMark.begin(), acc.vertexMark.end(), 0u), acc.epoch = 1;
   const uint32_t epoch = acc.epoch;
-  // A triangle is applied once its volume would move it by `threshold` on average.
+  // A triangle is applied once its volume would move it by `threshold` on average; a block's
+  // bank once it would move the block so: it is split into its triangles, which apply this call.
   const double least = threshold * 0.5 * hf.dx() * hf.dz();
-  // Each cell row's span of touched triangles, and where its changed vertices and its waiting
-  // triangles go (at most 3 and 1 for each triangle touched in it).
+  acc.cellsX = cells;
+  for (size_t e = 0, listed = acc.touched.size(); e < listed; ++e) {
+    const int t = acc.touched[e];
+    const uint8_t c = acc.code[size_t(t)];
+    if (!TerrainAccumulator::isHead(c)) continue;
+    const double v = acc.volume[size_t(t)];
+    if (v != 0.0 && std::abs(v) >= least * 2.0 * double(c & 15) * double(c >> 4)) acc.split(t, TerrainAccumulator::kApplyNow);
+  }
+  // The touched triangles by cell row (a counting sort; each row's then sorted ascending), and
+  // where each row's changed vertices and waiting triangles go (at most 3 and 1 for each of its
+  // triangles). The work follows the touched triangles, not the rows' width.
   const int perRow = 2 * cells;
   std::vector<int>& start = acc.rowStart;
-  std::vector<int>& lo = acc.rowLo;
-  std::vector<int>& hi = acc.rowHi;
+  std::vector<int>& byRow = acc.byRow;
+  std::vector<int>& next = acc.rowNext;
   start.assign(size_t(rows) + 1, 0);
-  lo.assign(size_t(rows), INT32_MAX);
-  hi.assign(size_t(rows), -1);
-  for (int t : acc.touched) {
-    const size_t k = size_t(t / perRow);
-    ++start[k + 1], lo[k] = std::min(lo[k], t), hi[k] = std::max(hi[k], t);
-  }
+  for (int t : acc.touched) ++start[size_t(t / perRow) + 1];
   std::vector<int> live;
   for (int k = 0; k < rows; ++k) {
+    if (start[size_t(k) + 1] > 0) live.push_back(k);
     start[size_t(k) + 1] += start[size_t(k)];
-    if (hi[size_t(k)] >= 0) live.push_back(k);
   }
+  next.assign(start.begin(), start.end() - 1);
+  byRow.resize(acc.touched.size());
+  for (int t : acc.touched) byRow[size_t(next[size_t(t / perRow)]++)] = t;
   std::vector<int>& changedAt = acc.changedAt;
   std::vector<int>& waiting = acc.waiting;
   changedAt.assign(3 * acc.touched.size(), -1);
   waiting.assign(acc.touched.size(), -1);
-  // A row's triangles in ascending order: its span of the accumulator, read in place.
+  // A row's triangles in ascending order.
   auto applyRow = [&](int k) {
     int* out = changedAt.data() + 3 * size_t(start[size_t(k)]);
     int* wait = waiting.data() + size_t(start[size_t(k)]);
     std::vector<double>& h = hf.heights();
-    for (int t = lo[size_t(k)]; t <= hi[size_t(k)]; ++t) {
+    int* const first = byRow.data() + start[size_t(k)];
+    int* const last = byRow.data() + start[size_t(k) + 1];
+    std::sort(first, last);
+    for (const int* at = first; at != last; ++at) {
+      const int t = *at;
       const double v = acc.volume[size_t(t)];
-      if (std::abs(v) < least || v == 0.0) {
+      uint8_t& c = acc.code[size_t(t)];
+      // A bank left whole waits; the sums of a split bank apply whatever their size.
+      if (v == 0.0 || TerrainAccumulator::isHead(c) || (c != TerrainAccumulator::kApplyNow && std::abs(v) < least)) {
         if (v != 0.0) *wait++ = t;
-        else acc.listed[size_t(t)] = 0;
+        else c = TerrainAccumulator::kNone;
         continue;
       }
       acc.volume[size_t(t)] = 0.0;
-      acc.listed[size_t(t)] = 0;
+      c = TerrainAccumulator::kNone;
       const std::array<size_t, 3> idx = hf.triangleVertexIndices(t);
       const std::array<double, 3> was = {h[idx[0]], h[idx[1]], h[idx[2]]};
       depositOnCorners(h, areas, idx, v);

@@ -70,30 +70,87 @@ struct SedimentConstants {
 constexpr double kTerrainApplyOverSpacing = 1e-4;
 
 /// Volume exchanged with the terrain: + deposited, − eroded [m³]. A step's exchanges are summed
-/// per boundary particle (addParticle), then spread over the triangles each particle stands for
-/// (spread); a triangle's sum waits there until applyTerrainChange applies it.
+/// per boundary particle (addParticle), then moved to the terrain (spread): a particle that stands
+/// for part of a triangle adds its sum to that triangle; one that stands for a block of cells adds
+/// it to the block's bank, kept whole in its first triangle (the block's head), and the bank is
+/// split over the block's triangles (in equal parts: their projected areas are equal) only when
+/// applyTerrainChange applies it. A triangle's sum, or a bank, waits until it would move the
+/// terrain by the threshold on average (model.md, "the terrain takes its change in steps of
+/// 10⁻⁴ Δs"); the soil budget counts what waits as terrain.
 struct TerrainAccumulator {
-  std::vector<double> volume;   ///< per triangle, not yet applied to the heights
+  /// What `code` says of a triangle: not listed, listed with its own sum, listed with a sum that
+  /// applyTerrainChange applies this call whatever its size (a bank just split); any other value
+  /// is the extent of a block (BoundaryParticles::extent, at least 1 × 1: 0x11) whose bank this
+  /// triangle, its head, holds.
+  static constexpr uint8_t kNone = 0, kTriangle = 1, kApplyNow = 2;
+  static bool isHead(uint8_t code) { return code > kApplyNow; }
+
+  std::vector<double> volume;   ///< per triangle: its sum, or its block's bank; not yet applied
   /// Triangles with an entry: those left waiting by the last applyTerrainChange in ascending
   /// order, then the ones touched since, in first-touch order. Each once.
   std::vector<int> touched;
-  std::vector<uint8_t> listed;  ///< per triangle: 1 when in `touched`
+  std::vector<uint8_t> code;    ///< per triangle: kNone, kTriangle, kApplyNow or a head's extent
+  int cellsX = 0;               ///< the terrain's cells along x (a bank's triangles)
   std::vector<double> particle;     ///< per boundary particle: this step's exchange
   std::vector<uint8_t> particleListed;  ///< per boundary particle: 1 when in `particles`
   std::vector<uint32_t> particles;  ///< boundary particles with an entry, in first-touch order, each once
   /// Per vertex: == epoch when applyTerrainChange changed its height this step.
   std::vector<uint32_t> vertexMark;
   uint32_t epoch = 0;
-  /// applyTerrainChange's scratch (per cell row: the touched count and span), kept for its memory.
-  std::vector<int> rowStart, rowLo, rowHi, changedAt, waiting;
-  void resize(int triangles, size_t vertices) {
-    volume.assign(size_t(triangles), 0.0), listed.assign(size_t(triangles), 0);
+  /// applyTerrainChange's scratch (the touched triangles by cell row, each row's start and fill),
+  /// kept for its memory.
+  std::vector<int> rowStart, byRow, rowNext, changedAt, waiting;
+  void resize(int triangles, size_t vertices, int cellsAlongX = 0) {
+    volume.assign(size_t(triangles), 0.0), code.assign(size_t(triangles), kNone);
     touched.clear(), particle.clear(), particleListed.clear(), particles.clear();
-    vertexMark.assign(vertices, 0u), epoch = 0;
+    vertexMark.assign(vertices, 0u), epoch = 0, cellsX = cellsAlongX;
   }
-  void add(int tri, double v) {
-    if (!listed[size_t(tri)]) listed[size_t(tri)] = 1, touched.push_back(tri);
+  /// Adds v to triangle tri's own sum; a bank it heads is split over its block first.
+  void add(int tri, double v, uint8_t as = kTriangle) {
+    uint8_t& c = code[size_t(tri)];
+    if (isHead(c)) split(tri, kTriangle);
+    if (c == kNone) touched.push_back(tri);
+    if (c != kApplyNow) c = as;
     volume[size_t(tri)] += v;
+  }
+  /// Adds v to the bank of the block of `extent` (x: low 4 bits, z: high 4 bits) cells from cell
+  /// `cell`. When its head already holds another sum (its own, or another block's bank: the
+  /// terrain was sampled in other blocks since), v is split over the block's triangles instead.
+  void addBlock(int cell, uint8_t extent, double v) {
+    const int head = 2 * cell;
+    uint8_t& c = code[size_t(head)];
+    if (c == kNone) c = extent, touched.push_back(head);
+    if (c == extent) {
+      volume[size_t(head)] += v;
+      return;
+    }
+    forEachBlockTriangle(cell, extent, v, [&](int tri, double part) { add(tri, part); });
+  }
+  /// Calls f(triangle, part) for each triangle of the block, row by row, part = v / triangles.
+  template <class F>
+  void forEachBlockTriangle(int cell, uint8_t extent, double v, F&& f) const {
+    const int bx = extent & 15, bz = extent >> 4;
+    const double part = v / (2.0 * bx * bz);
+    for (int k = 0; k < bz; ++k)
+      for (int i = 0; i < bx; ++i) {
+        const int at = cell + k * cellsX + i;
+        f(2 * at, part), f(2 * at + 1, part);
+      }
+  }
+  /// Moves the bank headed by `head` into its block's triangles as their own sums (`as`).
+  void split(int head, uint8_t as) {
+    const uint8_t extent = code[size_t(head)];
+    const double v = volume[size_t(head)];
+    code[size_t(head)] = kTriangle, volume[size_t(head)] = 0.0;  // still listed, now as a triangle
+    forEachBlockTriangle(head / 2, extent, v, [&](int tri, double part) { add(tri, part, as); });
+  }
+  /// Calls f(triangle, volume) for what waits, in `touched` order, a bank split by area.
+  template <class F>
+  void forEachWaiting(F&& f) const {
+    for (int t : touched) {
+      if (isHead(code[size_t(t)])) forEachBlockTriangle(t / 2, code[size_t(t)], volume[size_t(t)], f);
+      else f(t, volume[size_t(t)]);
+    }
   }
   /// Adds v to boundary particle j's sum for this step (`particle` grows to hold j).
   void addParticle(uint32_t j, double v) {
@@ -101,17 +158,19 @@ struct TerrainAccumulator {
     if (!particleListed[j]) particleListed[j] = 1, particles.push_back(j);
     particle[j] += v;
   }
-  /// Moves each boundary particle's sum, times the morphological factor, onto its triangles
-  /// (BoundaryParticles::spread), in first-touch order, and clears the sums. Adds to `excess`
-  /// what the factor added beyond the exchange, Σ (N v − v) [m³] (0 at N = 1).
+  /// Moves each boundary particle's sum, times the morphological factor, to its triangle or its
+  /// block's bank, in first-touch order, and clears the sums. Adds to `excess` what the factor
+  /// added beyond the exchange, Σ (N v − v) [m³] (0 at N = 1).
   void spread(const BoundaryParticles& b, double factor, double& excess) {
+    cellsX = b.cellsX;
     for (uint32_t j : particles) {
       const double v = particle[j];
       particle[j] = 0.0, particleListed[j] = 0;
       if (v == 0.0) continue;
       const double bed = v * factor;
       excess += bed - v;
-      b.spread(j, bed, [&](int tri, double part) { add(tri, part); });
+      if (b.patch[j] >= 0) addBlock(b.patch[j], b.extent[j], bed);
+      else add(b.triangle[j], bed);
     }
     particles.clear();
   }
@@ -213,8 +272,9 @@ double terrainVolume(const Heightfield& hf, const std::vector<double>& areas, do
 void depositOnTriangle(Heightfield& hf, const std::vector<double>& areas, int tri, double volume);
 
 /// Step 3: applies the triangles whose volume would move them by at least `threshold` [m] on
-/// average (|V| ≥ threshold · A_t; 0 applies every one) and clears them; the others stay, in
-/// ascending order, at the front of acc.touched. The triangles of one cell row go in ascending
+/// average (|V| ≥ threshold · A_t; 0 applies every one) and clears them, and so the banks whose
+/// volume would move their block by that much (split into the block's triangles first); the
+/// others stay, in ascending order, at the front of acc.touched. The triangles of one cell row go in ascending
 /// order; the rows run in two rounds, the even rows then the odd ones, each round in parallel
 /// (two rows of a round share no vertex), so the result is the same at any thread count. Marks
 /// the vertices whose height changed (acc.moved) and returns them, each once, in an order that

@@ -119,7 +119,7 @@ World::World(WorldDesc d)
   wall_ = wallSurfaceFor(terrain_, params_);
   vertexArea_ = vertexAreas(terrain_);
   terrainReference_ = terrain_.minHeight();
-  accumulator_.resize(terrain_.triangleCount(), terrain_.heights().size());
+  accumulator_.resize(terrain_.triangleCount(), terrain_.heights().size(), terrain_.nx() - 1);
   flow_.reset(terrain_.nx(), terrain_.nz());
   require(double(terrain_.heights().size()) <= Limits::kMaxTerrainVertices, "terrain: more vertices than the limit");
   supply_.maxParticles = size_t(particleCapacity(double(terrain_.heights().size())));

@@ -35,7 +35,7 @@ SoilBudget World::soilBudget() const {
 
 Heightfield World::settledTerrain() const {
   Heightfield hf = terrain_;
-  for (int t : accumulator_.touched) depositOnTriangle(hf, vertexArea_, t, accumulator_.volume[size_t(t)]);
+  accumulator_.forEachWaiting([&](int t, double v) { depositOnTriangle(hf, vertexArea_, t, v); });
   return hf;
 }
 

@@ -30,6 +30,7 @@ uint64_t World::stateHash() const {
   for (int t : accumulator_.touched) {
     mix(&t, sizeof t);
     mix(&accumulator_.volume[size_t(t)], sizeof(double));
+    mix(&accumulator_.code[size_t(t)], 1);
   }
   mix(&morphTime_, sizeof morphTime_);
   mix(&factor_, sizeof factor_);
@@ -85,7 +86,9 @@ constexpr uint32_t kStateTag = 0x444C5257;  // "WRLD"
 // the water's, and wait for none. Version 7 adds the flow record (flow_record.h: the bed time it
 // covers, its tiles and their values); older states load with an empty one, recording from then.
 // Version 8 has the flow record in tiles of 8 × 8 vertices (version 7's of 16 are cut into them).
-constexpr uint32_t kStateVersion = 8;
+// Version 9 adds what each waiting volume is (TerrainAccumulator::code: a triangle's own sum, or
+// the bank of a block of cells whose first triangle it is); in older states each is a triangle's.
+constexpr uint32_t kStateVersion = 9;
 
 }  // namespace
 
@@ -155,6 +158,9 @@ void World::saveState(std::ostream& o) const {
   for (int t : accumulator_.touched) waiting.push_back(accumulator_.volume[size_t(t)]);
   putVec(o, accumulator_.touched), putVec(o, waiting);
   put(o, flow_.time()), putVec(o, flow_.tiles()), putVec(o, flow_.values());
+  std::vector<uint8_t> codes;
+  for (int t : accumulator_.touched) codes.push_back(accumulator_.code[size_t(t)]);
+  putVec(o, codes);
 }
 
 void World::loadState(std::istream& in) {
@@ -242,6 +248,21 @@ void World::loadState(std::istream& in) {
     get(in, recorded, "flow maps"), getVec(in, tiles, "flow maps"), getVec(in, values, "flow maps");
     flow.restore(terrain_.nx(), terrain_.nz(), recorded, std::move(tiles), std::move(values), version >= 8 ? FlowRecord::kTile : 16);
   }
+  // What each waiting volume is: a triangle's own sum, or the bank of a block of cells (a tile's
+  // at most) inside the terrain whose first triangle holds it.
+  std::vector<uint8_t> codes(waitingAt.size(), TerrainAccumulator::kTriangle);
+  if (version >= 9) {
+    getVec(in, codes, "waiting terrain volumes", waitingAt.size());
+    const int cellsX = terrain_.nx() - 1, rows = terrain_.nz() - 1;
+    for (size_t e = 0; e < codes.size(); ++e) {
+      const uint8_t c = codes[e];
+      const int t = waitingAt[e], cell = t / 2, bx = c & 15, bz = c >> 4;
+      const int most = BoundarySampler::kTileCells;
+      const bool head = TerrainAccumulator::isHead(c) && bx >= 1 && bz >= 1 && bx <= most && bz <= most && t % 2 == 0 &&
+                        cell % cellsX + bx <= cellsX && cell / cellsX + bz <= rows;
+      if (c != TerrainAccumulator::kTriangle && !head) throw std::runtime_error("state is corrupt (waiting terrain volumes)");
+    }
+  }
   f.scratch.clear();
   flow_ = std::move(flow);
   supply_ = std::move(supply);
@@ -252,8 +273,11 @@ void World::loadState(std::istream& in) {
   wall_ = wallSurfaceFor(terrain_, params_);
   boundary_ = std::move(b);
   sampler_.setActiveTiles(std::move(tiles));
-  accumulator_.resize(terrain_.triangleCount(), terrain_.heights().size());
-  for (size_t e = 0; e < waitingAt.size(); ++e) accumulator_.add(waitingAt[e], waiting[e]);
+  accumulator_.resize(terrain_.triangleCount(), terrain_.heights().size(), terrain_.nx() - 1);
+  for (size_t e = 0; e < waitingAt.size(); ++e) {
+    const int t = waitingAt[e];
+    accumulator_.touched.push_back(t), accumulator_.volume[size_t(t)] = waiting[e], accumulator_.code[size_t(t)] = codes[e];
+  }
   // The factor the guard had lowered holds while the speed-up asked for is the one the state was
   // saved under; a world whose user has asked for another since (a snapshot restored after the
   // slider moved) runs at what they asked for.

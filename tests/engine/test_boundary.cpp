@@ -7,6 +7,7 @@
 #include <Eigen/Geometry>
 
 #include "engine/boundary.h"
+#include "engine/sediment.h"
 #include "scene/presets.h"
 
 using namespace scour;
@@ -254,7 +255,9 @@ TEST_CASE("spacing sampling: one boundary particle per block of cells about Δs 
   // What a block particle exchanges goes to its 8 triangles in equal parts, summing to it.
   const size_t j = size_t(std::find_if(b.patch.begin(), b.patch.end(), [](int q) { return q >= 0; }) - b.patch.begin());
   std::vector<std::pair<int, double>> parts;
-  b.spread(j, -3e-7, [&](int tri, double v) { parts.emplace_back(tri, v); });
+  TerrainAccumulator acc;
+  acc.cellsX = b.cellsX;
+  acc.forEachBlockTriangle(b.patch[j], b.extent[j], -3e-7, [&](int tri, double v) { parts.emplace_back(tri, v); });
   REQUIRE(parts.size() == 8);
   double sum = 0;
   for (auto [tri, v] : parts) {

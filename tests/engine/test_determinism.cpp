@@ -86,19 +86,23 @@ TEST_CASE("spacing sampling: the canyon's soil budget closes, the same at 1 and 
   for (int k = 0; k < 30; ++k) a->step(), resumed.step();
   CHECK(resumed.stateHash() == a->stateHash());
   CHECK(resumed.flowRecord().values() == a->flowRecord().values());
-  // The waiting volumes come before the flow record (its time, tiles and values), which ends the
-  // state: (n, n triangles), (n, n volumes). A volume that is not finite or a triangle outside
-  // the terrain is refused, and the world keeps its state.
+  // The waiting volumes come before the flow record (its time, tiles and values), and what each
+  // of them is ends the state: (n, n triangles), (n, n volumes), the record, (n, n codes). A
+  // volume that is not finite, a triangle outside the terrain or a code that is neither a
+  // triangle's nor a block's inside the terrain is refused, and the world keeps its state.
   std::stringstream again;
   a->saveState(again);
   const std::string whole = again.str();
-  const size_t record = 8 + (8 + 4 * a->flowRecord().tiles().size()) + (8 + 8 * a->flowRecord().values().size());
-  const std::string bytes = whole.substr(0, whole.size() - record), flow = whole.substr(whole.size() - record);
-  auto u64At = [&](size_t at) {
+  auto u64In = [&](const std::string& s, size_t at) {
     uint64_t v = 0;
-    std::memcpy(&v, bytes.data() + at, sizeof v);
+    std::memcpy(&v, s.data() + at, sizeof v);
     return v;
   };
+  size_t codes = 0;
+  while (codes + 8 < whole.size() && u64In(whole, whole.size() - codes - 8) != codes) ++codes;
+  const size_t record = 8 + (8 + 4 * a->flowRecord().tiles().size()) + (8 + 8 * a->flowRecord().values().size()) + 8 + codes;
+  const std::string bytes = whole.substr(0, whole.size() - record), flow = whole.substr(whole.size() - record);
+  auto u64At = [&](size_t at) { return u64In(bytes, at); };
   size_t n = 1;
   while (n < bytes.size() / 12 && !(u64At(bytes.size() - 8 * n - 8) == n && u64At(bytes.size() - 12 * n - 16) == n)) ++n;
   REQUIRE(u64At(bytes.size() - 8 * n - 8) == n);
@@ -121,6 +125,17 @@ TEST_CASE("spacing sampling: the canyon's soil budget closes, the same at 1 and 
   const int32_t nowhere = -1;
   std::memcpy(outside.data() + outside.size() - 12 * n - 8, &nowhere, sizeof nowhere);
   CHECK(refuse(outside) == "state is corrupt (waiting terrain volumes)");
+  REQUIRE(codes == n);
+  // Blocks' banks wait, and resumed above.
+  const std::string waitingCodes = flow.substr(flow.size() - codes);
+  CHECK(std::count_if(waitingCodes.begin(), waitingCodes.end(), [](char c) { return uint8_t(c) > 2; }) > 0);
+  // Neither a triangle's sum nor a block of 1 to 8 cells a side (a tile's at most).
+  for (const uint8_t code : {uint8_t(0), uint8_t(2), uint8_t(0x30), uint8_t(0x0f), uint8_t(0x19), uint8_t(0xff)}) {
+    std::stringstream in(bytes + flow.substr(0, flow.size() - codes) + std::string(1, char(code)) + flow.substr(flow.size() - codes + 1));
+    const uint64_t before = resumed.stateHash();
+    CHECK_THROWS_WITH(resumed.loadState(in), "state is corrupt (waiting terrain volumes)");
+    CHECK(resumed.stateHash() == before);
+  }
   // A state of another step refused at its very end leaves the world's clock and particles alone.
   for (int k = 0; k < 3; ++k) resumed.step();
   const double before = resumed.time();

@@ -84,15 +84,22 @@ TEST_CASE("erosion stops at C_max", "[erosion]") {
   CHECK(acc.particle[0] == -s.f.sed[0]);
 }
 
-TEST_CASE("a block's boundary particle spreads its step's sum over the block's triangles by area", "[terrain]") {
-  // A boundary particle standing for the 2 × 3 cells from cell (1, 2) of a grid 5 cells wide:
-  // its 12 triangles get a twelfth each of what the step gave it, the others nothing.
+TEST_CASE("a block's boundary particle banks its step's sum, split over the block's triangles by area when applied", "[terrain]") {
+  // A boundary particle standing for the 2 × 3 cells from cell (1, 2) of a grid 5 cells wide (a
+  // terrain of 6 × 7 vertices, cells of 0.1 m): its sums wait whole in the block's first
+  // triangle; applied, its 12 triangles get a twelfth each, the others nothing.
+  Heightfield hf(6, 7, 0.1, 0.1);
+  const auto areas = vertexAreas(hf);
   BoundaryParticles b;
   b.cellsX = 5;
-  b.x.push_back(Vec3f::Zero()), b.triangle.push_back(2 * (2 * 5 + 1)), b.area.push_back(1.0);
-  b.bary.emplace_back(0.0f, 0.0f), b.patch.push_back(2 * 5 + 1), b.extent.push_back(uint8_t(2 | 3 << 4));
+  const int cell = 2 * 5 + 1, head = 2 * cell;
+  const uint8_t extent = uint8_t(2 | 3 << 4);
+  b.x.push_back(Vec3f::Zero()), b.triangle.push_back(head), b.area.push_back(1.0);
+  b.bary.emplace_back(0.0f, 0.0f), b.patch.push_back(cell), b.extent.push_back(extent);
   TerrainAccumulator acc;
-  acc.resize(2 * 5 * 6, 36);
+  acc.resize(hf.triangleCount(), hf.heights().size(), 5);
+  // At a threshold of 1e-4 m the block of 0.06 m² takes its bank once |V| ≥ 6e-6 m³.
+  const double threshold = 1e-4, least = threshold * 12 * 0.5 * 0.1 * 0.1;
   acc.addParticle(0, 3e-6);
   acc.addParticle(0, -1.2e-6);
   acc.addParticle(0, 0.6e-6);
@@ -100,15 +107,73 @@ TEST_CASE("a block's boundary particle spreads its step's sum over the block's t
   const double sum = 3e-6 + -1.2e-6 + 0.6e-6;
   CHECK(acc.particle[0] == sum);
   acc.spread(b);
+  CHECK(acc.touched == std::vector<int>{head});
+  CHECK(acc.volume[size_t(head)] == sum);
+  CHECK(acc.code[size_t(head)] == extent);
+  CHECK(acc.waitingVolume() == sum);
   std::vector<int> expected;
   for (int k = 2; k < 5; ++k)
     for (int i = 1; i < 3; ++i) expected.push_back(2 * (k * 5 + i)), expected.push_back(2 * (k * 5 + i) + 1);
-  CHECK(acc.touched == expected);
-  for (int t = 0; t < 60; ++t) {
-    const bool inBlock = std::find(expected.begin(), expected.end(), t) != expected.end();
-    CHECK(acc.volume[size_t(t)] == (inBlock ? sum / 12.0 : 0.0));
+  std::vector<std::pair<int, double>> parts;
+  acc.forEachWaiting([&](int t, double v) { parts.emplace_back(t, v); });
+  REQUIRE(parts.size() == 12);
+  for (size_t e = 0; e < 12; ++e) CHECK(parts[e] == std::make_pair(expected[e], sum / 12.0));
+  // 2.4e-6 m³ is below the block's 6e-6: the bank waits whole, the terrain as it was.
+  CHECK(applyTerrainChange(hf, areas, acc, threshold).empty());
+  CHECK(acc.touched == std::vector<int>{head});
+  CHECK(acc.volume[size_t(head)] == sum);
+  // Two steps more carry it over: split by area, and every part applied.
+  const Heightfield before = hf;
+  for (int step = 0; step < 2; ++step) {
+    acc.addParticle(0, 2e-6);
+    acc.spread(b);
   }
-  CHECK(acc.waitingVolume() == Approx(sum).epsilon(1e-15));
+  const double bank = sum + 2e-6 + 2e-6;
+  REQUIRE(bank >= least);
+  const std::vector<int> moved = applyTerrainChange(hf, areas, acc, threshold);
+  CHECK(acc.touched.empty());
+  for (int t = 0; t < hf.triangleCount(); ++t) {
+    CHECK(acc.volume[size_t(t)] == 0.0);
+    CHECK(acc.code[size_t(t)] == TerrainAccumulator::kNone);
+  }
+  CHECK(terrainVolume(hf, areas, 0.0) == Approx(bank).epsilon(1e-12));
+  // The block's 4 × 3 vertices (1..3 along x, 2..5 along z) rose, no other.
+  for (int k = 0; k < 7; ++k)
+    for (int i = 0; i < 6; ++i) {
+      const bool inside = i >= 1 && i <= 3 && k >= 2 && k <= 5;
+      CHECK((hf.at(i, k) > before.at(i, k)) == inside);
+      CHECK(acc.moved(k * 6 + i) == inside);
+    }
+  CHECK(moved.size() == 12);
+}
+
+TEST_CASE("a block's bank and a triangle's own sum on the same triangle: the bank is split first", "[terrain]") {
+  // The terrain was sampled in other blocks since (a tile left and came back): a sum for one
+  // triangle lands on a bank's head, and a bank on a triangle that holds its own sum.
+  Heightfield hf(6, 7, 0.1, 0.1);
+  const auto areas = vertexAreas(hf);
+  TerrainAccumulator acc;
+  acc.resize(hf.triangleCount(), hf.heights().size(), 5);
+  const uint8_t wide = uint8_t(2 | 2 << 4), narrow = uint8_t(1 | 2 << 4);
+  acc.addBlock(6, wide, 8e-6);  // cells 6, 7, 11, 12: triangles 12..15, 22..25
+  acc.add(12, 1e-6);            // the head's own: the bank goes to its 8 triangles first
+  CHECK(acc.code[12] == TerrainAccumulator::kTriangle);
+  CHECK(acc.volume[12] == 1e-6 + 1e-6);
+  for (int t : {13, 14, 15, 22, 23, 24, 25}) CHECK(acc.volume[size_t(t)] == 1e-6);
+  acc.addBlock(6, narrow, 4e-6);  // the head holds a triangle's sum: split at once over 4
+  for (int t : {12, 13, 22, 23}) CHECK(acc.code[size_t(t)] == TerrainAccumulator::kTriangle);
+  CHECK(acc.volume[12] == 1e-6 + 1e-6 + 1e-6);
+  CHECK(acc.volume[22] == 1e-6 + 1e-6);
+  acc.addBlock(16, narrow, 2e-6);  // another bank, then a wider one with the same head
+  acc.addBlock(16, wide, 4e-6);    // split over 8, the narrow bank with it
+  CHECK(acc.code[32] == TerrainAccumulator::kTriangle);
+  CHECK(acc.volume[32] == 2e-6 / 4 + 4e-6 / 8);
+  CHECK(acc.volume[34] == 4e-6 / 8);
+  const double total = 8e-6 + 1e-6 + 4e-6 + 2e-6 + 4e-6;
+  CHECK(acc.waitingVolume() == Approx(total).epsilon(1e-15));
+  applyTerrainChange(hf, areas, acc, 0.0);
+  CHECK(acc.touched.empty());
+  CHECK(terrainVolume(hf, areas, 0.0) == Approx(total).epsilon(1e-12));
 }
 
 TEST_CASE("a deposit raises the lowest vertex first and keeps the volume exact", "[terrain]") {
