@@ -308,12 +308,12 @@ void transferSediment(const SedimentConstants& k, const SedimentEffects& fx,
   resizeForParticles(hind, n);
   resizeForParticles(scale, n);
   resizeForParticles(delta, n);
-  std::fill(scale.begin(), scale.end(), SedimentWorkspace::Scales{});
-  std::fill(delta.begin(), delta.end(), 0.0);
+  // (delta needs no clearing: the exchange writes every particle's.)
 #pragma omp parallel for schedule(static)
   for (size_t i = 0; i < n; ++i) {
     conc[i] = float(f.sed[i] / V);
     hind[i] = k.hindranceFast(f.sed[i] / V);
+    scale[i] = SedimentWorkspace::Scales{};
   }
 
   // One exchange pass over all pairs. Unscaled (every factor 1), it also sums each particle's
