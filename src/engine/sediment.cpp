@@ -443,6 +443,10 @@ void erode(const SedimentConstants& k, const NeighborLists& bnbrs, const Boundar
   const double room = k.c_max * k.volume;
   BoundaryVolumes& eroded = ws.exchanges;
   resizeForParticles(ws.tau, n);
+  // τ ≤ τ_c for l ≥ |v| K² / τ_c² (τ = K √(|v| / l)); l_c lies a millionth farther, far beyond
+  // the rounding of either side (with τ_c = 0 every pair is looked at).
+  const bool sqrtLaw = k.shear_n == 0.5;
+  const double erodingBelow = k.tau_c > 0 ? k.shear_k * k.shear_k / (k.tau_c * k.tau_c) * (1.0 + 1e-6) : INFINITY;
 #pragma omp parallel
   {
     const int threads = omp_get_num_threads(), t = omp_get_thread_num();
@@ -458,16 +462,34 @@ void erode(const SedimentConstants& k, const NeighborLists& bnbrs, const Boundar
       const double speed = double(f.v[i].norm());
       const size_t first = mine.size();
       double total = 0.0, peak = -1.0;
-      forEachNeighbor(bnbrs, f.x, b.x, i, [&](uint32_t bj, const Vec3f&, float r) {
-        // Eq. (10): ε = K_ε (τ − τ_c) for τ > τ_c; the pair's volume L_b² ε Δt / ρ_s.
-        const double tau = pairShear(k, speed, double(r));
-        peak = std::max(peak, tau);
+      // Eq. (10): ε = K_ε (τ − τ_c) for τ > τ_c; the pair's volume L_b² ε Δt / ρ_s.
+      auto pair = [&](uint32_t bj, double tau) {
         if (tau <= k.tau_c) return;
         const double v = b.area[bj] * k.k_eps * (tau - k.tau_c) * dt / k.rho_s;
         if (v <= 0.0) return;
         mine.emplace_back(bj, -v);
         total += v;
-      });
+      };
+      if (sqrtLaw) {
+        // τ = K √(|v| / l) falls as l grows, and each of its operations is correctly rounded, so
+        // is monotone: the peak is the nearest pair's τ, and a pair farther than l_c (where τ is
+        // surely below τ_c, with a margin far above rounding) erodes nothing. Only the nearer
+        // pairs take the division and the root: the same bits as computing every pair's τ.
+        const double lc = speed * erodingBelow;
+        double nearest = INFINITY;
+        forEachNeighbor(bnbrs, f.x, b.x, i, [&](uint32_t bj, const Vec3f&, float r) {
+          const double l = std::max(double(r), k.min_distance);
+          nearest = std::min(nearest, l);
+          if (l < lc) pair(bj, pairShear(k, speed, l));
+        });
+        peak = pairShear(k, speed, nearest);
+      } else {
+        forEachNeighbor(bnbrs, f.x, b.x, i, [&](uint32_t bj, const Vec3f&, float r) {
+          const double tau = pairShear(k, speed, double(r));
+          peak = std::max(peak, tau);
+          pair(bj, tau);
+        });
+      }
       ws.tau[i] = float(peak);
       if (total <= 0.0) continue;
       // Model.md: C_j ≤ C_max. The particle gains exactly the sum the terrain loses.

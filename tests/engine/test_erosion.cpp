@@ -73,6 +73,51 @@ TEST_CASE("no erosion below the critical shear stress", "[erosion]") {
   CHECK(acc.touched.empty());
 }
 
+TEST_CASE("erosion over many boundary pairs: each pair's τ as eq. (9) gives it, the nearest one's the peak", "[erosion]") {
+  // One fluid particle over boundary particles from well inside to well beyond the distance
+  // l* = |v| K² / τ_c² where τ falls to τ_c (erode looks only at the pairs nearer than a millionth
+  // beyond it): what it erodes and its peak are, to the bit, those of every pair's τ in list order.
+  SimParams p;
+  p.spacing = 0.02;
+  const float speed = float(0.4 * p.support() * p.tau_c * p.tau_c / (p.shear_k * p.shear_k));
+  const double lStar = double(speed) * p.shear_k * p.shear_k / (p.tau_c * p.tau_c);
+  REQUIRE(lStar < 0.5 * p.support());
+  Fluid f;
+  f.push(Vec3f(0.5f, 0.0f, 0.5f), Vec3f(speed, 0, 0), 0, 1000.0f);
+  BoundaryParticles b;
+  for (double l : {0.001, 0.3 * lStar, lStar * (1 - 1e-7), lStar, lStar * (1 + 1e-7), lStar * (1 + 2e-6), 0.9 * p.support()}) {
+    b.x.push_back(Vec3f(0.5f, -float(l), 0.5f));
+    b.triangle.push_back(7), b.area.push_back(3e-4), b.bary.emplace_back(0.3f, 0.3f), b.patch.push_back(-1), b.extent.push_back(0);
+  }
+  Grid grid;
+  grid.build(f.x, float(p.support()));
+  std::vector<uint32_t> start, sorted;
+  grid.binOther(b.x, start, sorted);
+  NeighborLists bn;
+  bn.build(grid, f.x, b.x, start, sorted, float(p.support()), false);
+  REQUIRE(bn.count(0) == b.size());
+  SedimentConstants k(p);
+  TerrainAccumulator acc;
+  acc.resize(16, 16);
+  SedimentWorkspace ws;
+  const double dt = 1e-3;
+  erode(k, bn, b, dt, f, acc, ws);
+  double peak = -1.0, total = 0.0;
+  int eroding = 0;
+  forEachNeighbor(bn, f.x, b.x, 0, [&](uint32_t bj, const Vec3f&, float r) {
+    const double tau = p.shear_k * std::sqrt(double(speed) / std::max(double(r), k.min_distance));
+    peak = std::max(peak, tau);
+    if (tau <= p.tau_c) return;
+    ++eroding;
+    total += b.area[bj] * p.k_eps * (tau - p.tau_c) * dt / p.sediment_density;
+  });
+  CHECK(eroding >= 2);
+  CHECK(eroding <= 4);
+  CHECK(ws.tau[0] == float(peak));
+  CHECK(f.sed[0] == total);
+  CHECK(acc.particles.size() == size_t(eroding));
+}
+
 TEST_CASE("erosion stops at C_max", "[erosion]") {
   OnePair s(50.0f, 0.005f);
   s.b.area[0] = 1.0;  // a huge boundary particle: far more than a particle can carry
