@@ -506,6 +506,10 @@ void erode(const SedimentConstants& k, const NeighborLists& bnbrs, const Boundar
   replay(eroded, b, acc);
 }
 
+void TerrainAccumulator::growParticles(uint32_t j) {
+  particle.resize(size_t(j) + 1, 0.0), particleListed.resize(size_t(j) + 1, 0);
+}
+
 std::vector<double> vertexAreas(const Heightfield& hf) {
   std::vector<double> a(hf.heights().size(), 0.0);
   const double third = hf.dx() * hf.dz() / 2.0 / 3.0;

@@ -154,15 +154,18 @@ struct TerrainAccumulator {
   }
   /// Adds v to boundary particle j's sum for this step (`particle` grows to hold j).
   void addParticle(uint32_t j, double v) {
-    if (j >= particle.size()) particle.resize(size_t(j) + 1, 0.0), particleListed.resize(size_t(j) + 1, 0);
+    if (j >= particle.size()) growParticles(j);
     if (!particleListed[j]) particleListed[j] = 1, particles.push_back(j);
     particle[j] += v;
   }
+  /// Makes `particle` and `particleListed` hold boundary particle j (sediment.cpp: out of line,
+  /// the rare path of addParticle).
+  void growParticles(uint32_t j);
   /// Moves each boundary particle's sum, times the morphological factor, to its triangle or its
   /// block's bank, in first-touch order, and clears the sums. Adds to `excess` what the factor
   /// added beyond the exchange, Σ (N v − v) [m³] (0 at N = 1).
   void spread(const BoundaryParticles& b, double factor, double& excess) {
-    cellsX = b.cellsX;
+    if (b.cellsX > 0) cellsX = b.cellsX;
     for (uint32_t j : particles) {
       const double v = particle[j];
       particle[j] = 0.0, particleListed[j] = 0;
