@@ -329,7 +329,9 @@ void transferSediment(const SedimentConstants& k, const SedimentEffects& fx,
       const int threads = omp_get_num_threads(), t = omp_get_thread_num();
 #pragma omp single
       deposits.resize(size_t(threads));
-      auto& mine = deposits[size_t(t)];
+      // The thread's list kept on its own stack while it fills it: the lists' headers share a cache
+      // line, and each thread writing its own end pointer there bounced the line between cores.
+      auto mine = std::move(deposits[size_t(t)]);
       mine.clear();
       const size_t lo = blockBegin(n, size_t(threads), size_t(t));
       const size_t hi = blockBegin(n, size_t(threads), size_t(t) + 1);
@@ -386,6 +388,7 @@ void transferSediment(const SedimentConstants& k, const SedimentEffects& fx,
         const double space = std::max(room - f.sed[i], 0.0);
         if (in > space) scale[i].in = space / in, limited = true;
       }
+      deposits[size_t(t)] = std::move(mine);
     }
   };
   exchange(false);
@@ -452,7 +455,7 @@ void erode(const SedimentConstants& k, const NeighborLists& bnbrs, const Boundar
     const int threads = omp_get_num_threads(), t = omp_get_thread_num();
 #pragma omp single
     eroded.resize(size_t(threads));
-    auto& mine = eroded[size_t(t)];
+    auto mine = std::move(eroded[size_t(t)]);  // on the thread's stack, as transferSediment's
     mine.clear();
     const size_t lo = blockBegin(n, size_t(threads), size_t(t));
     const size_t hi = blockBegin(n, size_t(threads), size_t(t) + 1);
@@ -502,6 +505,7 @@ void erode(const SedimentConstants& k, const NeighborLists& bnbrs, const Boundar
       }
       f.sed[i] += gained;
     }
+    eroded[size_t(t)] = std::move(mine);
   }
   replay(eroded, b, acc);
 }
