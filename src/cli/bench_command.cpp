@@ -320,20 +320,34 @@ int benchWindow(const BenchOptions& o, const Scene& scene) {
 }
 
 // What the timed steps of one world add up to: per pass and Table 1 group, the totals, the
-// water's time they covered and the solves' iterations.
+// water's time they covered and the solves' iterations. With the bed's work every K steps
+// (erosion.exchange_every) the medians are of K-step windows' means, each window holding one
+// step with the bed's work: a median of single steps would read the K − 1 steps without it.
 struct StepTally {
   std::vector<std::vector<double>> perPass = std::vector<std::vector<double>>(size_t(Pass::kCount));
   std::vector<double> total, groups[4];
   double particles = 0;
+  long window = 1;  ///< K, steps per window
+  StepRecord pending;  ///< the open window's sums
+  long inWindow = 0;
   // Wall seconds per simulated second (all the timed steps, not a median: a solver that takes
   // fewer, longer steps is judged on the water's time), and the solves' iterations.
   double wall = 0, simulated = 0, densityError = 0;
   long steps = 0, densityIterations = 0, divergenceIterations = 0;
 
   void add(const StepRecord& r, const World& w) {
-    total.push_back(r.seconds);
-    for (size_t p = 0; p < perPass.size(); ++p) perPass[p].push_back(r.passSeconds[p]);
-    for (int k = 0; k < 4; ++k) groups[k].push_back(r.groupSeconds[size_t(k)]);
+    window = std::max(1, w.params().exchange_every);
+    if (inWindow == 0) pending.seconds = 0, pending.passSeconds = {}, pending.groupSeconds = {};
+    pending.seconds += r.seconds;
+    for (size_t p = 0; p < perPass.size(); ++p) pending.passSeconds[p] += r.passSeconds[p];
+    for (size_t k = 0; k < 4; ++k) pending.groupSeconds[k] += r.groupSeconds[k];
+    if (++inWindow >= window) {
+      const double k = double(inWindow);
+      total.push_back(pending.seconds / k);
+      for (size_t p = 0; p < perPass.size(); ++p) perPass[p].push_back(pending.passSeconds[p] / k);
+      for (size_t g = 0; g < 4; ++g) groups[g].push_back(pending.groupSeconds[g] / k);
+      inWindow = 0;
+    }
     particles += double(w.fluid().size());
     wall += r.seconds, simulated += r.stats.dt, densityError += r.stats.density_error;
     densityIterations += r.stats.density_iterations, divergenceIterations += r.stats.divergence_iterations;

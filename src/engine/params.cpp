@@ -174,6 +174,12 @@ std::vector<ParamInfo> makeTable() {
                   "until it holds.",
                   &P::max_bed_step),
              1e-4, 0.1),
+      slider(integer("erosion.exchange_every", "Bed work every", "K", "steps", 1.0, 1000.0,
+                     "The sediment exchange, erosion and the terrain's update run every K-th "
+                     "step over the K steps' time: K times less bed work for a coarser clock "
+                     "(1: every step).",
+                     &P::exchange_every),
+             1.0, 16.0),
       real("sediment.c_max", "Maximum concentration", "Cmax", "-", 0.01, 1.0,
            "Largest solid volume fraction a fluid particle can carry.", &P::c_max),
       real("sediment.rz_exponent", "Richardson–Zaki exponent", "e", "-", 1.0, 10.0,

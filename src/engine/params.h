@@ -123,6 +123,10 @@ struct SimParams {
   /// The bed-change guard: the most the bed may move anywhere in one step, over Δs. A step whose
   /// exchange times N would move it more halves N until it does not (never below 1) [-].
   double max_bed_step = 0.01;
+  /// K: the sediment exchange, erosion, the terrain's update and the flow maps run every K-th
+  /// step, over the K steps' time (model.md, "the bed's work every K steps"); 1 runs them every
+  /// step, the model as before [-].
+  int exchange_every = 1;
 
   // --- bookkeeping ---
   /// Steps between reorders of the particle arrays along the Z-order curve [-].

@@ -202,8 +202,11 @@ double World::chooseDt() const {
   }
   // Explicit sediment transport: diffusion needs Δt ≤ h²/(8D) (model.md); the donor–acceptor
   // settling moves at most a fraction λ of h per step.
-  if (effects_.diffusion && params_.diffusion > 0) dt = std::min(dt, 0.125 * h * h / params_.diffusion);
-  if ((effects_.settling || effects_.deposition) && sediment_.vs0 != 0) dt = std::min(dt, params_.cfl * h / std::abs(sediment_.vs0));
+  // Every K-th step the exchange spans K steps: the limits hold for the span.
+  const double every = double(std::max(params_.exchange_every, 1));
+  if (effects_.diffusion && params_.diffusion > 0) dt = std::min(dt, 0.125 * h * h / params_.diffusion / every);
+  if ((effects_.settling || effects_.deposition) && sediment_.vs0 != 0)
+    dt = std::min(dt, params_.cfl * h / std::abs(sediment_.vs0) / every);
   return dt;
 }
 
@@ -259,11 +262,11 @@ void World::simulationBox() {
   boxHi_ = Vec3f(float(terrain_.xMax() + pad), float(terrain_.maxHeight() + pad + climb), float(terrain_.zMax() + pad));
 }
 
-void World::sedimentWork() {
+void World::sedimentWork(double span) {
   SedimentEffects sfx{effects_.settling, effects_.diffusion, effects_.deposition, effects_.erosion};
   if (sfx.settling || sfx.diffusion || sfx.deposition) {
     timed(Pass::kSediment, [&] {
-      transferSediment(sediment_, sfx, neighbors_.fluid(), neighbors_.boundary(), boundary_, dt_, fluid_, accumulator_, sedimentWork_);
+      transferSediment(sediment_, sfx, neighbors_.fluid(), neighbors_.boundary(), boundary_, span, fluid_, accumulator_, sedimentWork_);
       const SedimentDefects& d = sedimentWork_.defects;
       if (sediment_.advection == SettlingAdvection::kNaiveGradient && sfx.settling && fluid_.size() > 0) {
         ledger_.defects.created += d.created;
@@ -273,7 +276,7 @@ void World::sedimentWork() {
       }
     });
   }
-  if (sfx.erosion) timed(Pass::kErosion, [&] { erode(sediment_, neighbors_.boundary(), boundary_, dt_, fluid_, accumulator_, sedimentWork_); });
+  if (sfx.erosion) timed(Pass::kErosion, [&] { erode(sediment_, neighbors_.boundary(), boundary_, span, fluid_, accumulator_, sedimentWork_); });
   if (sfx.erosion || sfx.deposition) {
     timed(Pass::kTerrain, [&] {
       // The geologic clock (model.md, "two clocks"): the bed takes N times the step's exchange;
@@ -281,7 +284,8 @@ void World::sedimentWork() {
       // erosion.max_bed_step is per WCSPH step, λ h / c_s of water; a DFSPH step k times as long
       // may move the bed k times as far, so that the bed's speed against the water, which the
       // guard bounds, and with it N, are the same under either solver (model.md, "the guard").
-      double bound = params_.max_bed_step * params_.spacing;
+      // An exchange every K steps is K steps' worth: its bed may move K times as far.
+      double bound = params_.max_bed_step * params_.spacing * double(params_.exchange_every);
       if (implicit()) bound *= std::max(1.0, dt_ / (params_.cfl * sph_.h / params_.sound_speed));
       const double peak = accumulator_.bedMotion(boundary_, INFINITY).peak;
       if (stepFactor_ > 1 && stepFactor_ * peak > bound) {
@@ -428,14 +432,19 @@ StepStats World::step() {
       for (size_t i = 0; i < n; ++i) fluid_.v[i] += half * fluid_.a[i];  // kick: v(t + Δt)
     });
   }
-  sedimentWork();
+  // The bed's work every K-th step over the K steps' time (model.md, "the bed's work every K
+  // steps"); K = 1: every step over its own.
+  const int every = params_.exchange_every;
+  const bool exchange = every <= 1 || (step_ % every) == 0;
+  const double span = double(std::max(every, 1)) * dt_;
+  if (exchange) sedimentWork(span);
   // DFSPH's density, α and divergence solve after the terrain moved: a saved state then holds all
   // they read, and a resumed run recomputes α from the same terrain (world_state.cpp).
   if (effects_.fluid_motion && implicit()) implicitAccelerations(true);
-  if (effects_.erosion || effects_.deposition)
+  if (exchange && (effects_.erosion || effects_.deposition))
     timed(Pass::kFlowMaps, [&] {
       if (!effects_.erosion) bedShear(sediment_, neighbors_.boundary(), boundary_, fluid_, sedimentWork_.tau);
-      flow_.record(terrain_, vertexArea_, fluid_, sedimentWork_.tau, sediment_.volume, params_.spacing, stepFactor_ * dt_);
+      flow_.record(terrain_, vertexArea_, fluid_, sedimentWork_.tau, sediment_.volume, params_.spacing, stepFactor_ * span);
     });
   morphTime_ += stepFactor_ * dt_;
   timed(Pass::kInvariants, [&] { checkInvariants(); });

@@ -334,7 +334,8 @@ class World {
   /// wallMargin(); returns whether it did. Throws LimitExceeded at the particle limit.
   bool place(const Vec3f& pos, const Vec3f& vel, double clearance = 0.5);
   void checkInvariants();
-  void sedimentWork();
+  /// The sediment exchange, erosion and the terrain's update over `span` seconds of water.
+  void sedimentWork(double span);
   bool needsBoundary() const { return effects_.no_slip || effects_.erosion || effects_.deposition; }
 
   SimParams params_;
