@@ -330,6 +330,14 @@ struct StepTally {
   long window = 1;  ///< K, steps per window
   StepRecord pending;  ///< the open window's sums
   long inWindow = 0;
+  /// The last entries are an open window's: replaced as it fills; report() leaves them out unless
+  /// no window closed (fewer timed steps than K).
+  bool partial = false;
+  void pop() {
+    total.pop_back();
+    for (auto& p : perPass) p.pop_back();
+    for (auto& g : groups) g.pop_back();
+  }
   // Wall seconds per simulated second (all the timed steps, not a median: a solver that takes
   // fewer, longer steps is judged on the water's time), and the solves' iterations.
   double wall = 0, simulated = 0, densityError = 0;
@@ -341,13 +349,14 @@ struct StepTally {
     pending.seconds += r.seconds;
     for (size_t p = 0; p < perPass.size(); ++p) pending.passSeconds[p] += r.passSeconds[p];
     for (size_t k = 0; k < 4; ++k) pending.groupSeconds[k] += r.groupSeconds[k];
-    if (++inWindow >= window) {
-      const double k = double(inWindow);
-      total.push_back(pending.seconds / k);
-      for (size_t p = 0; p < perPass.size(); ++p) perPass[p].push_back(pending.passSeconds[p] / k);
-      for (size_t g = 0; g < 4; ++g) groups[g].push_back(pending.groupSeconds[g] / k);
-      inWindow = 0;
-    }
+    // The window's means replace the last partial window's (fewer timed steps than K: that one).
+    if (partial) pop();
+    const double k = double(++inWindow);
+    total.push_back(pending.seconds / k);
+    for (size_t p = 0; p < perPass.size(); ++p) perPass[p].push_back(pending.passSeconds[p] / k);
+    for (size_t g = 0; g < 4; ++g) groups[g].push_back(pending.groupSeconds[g] / k);
+    partial = inWindow < window;
+    if (!partial) inWindow = 0;
     particles += double(w.fluid().size());
     wall += r.seconds, simulated += r.stats.dt, densityError += r.stats.density_error;
     densityIterations += r.stats.density_iterations, divergenceIterations += r.stats.divergence_iterations;
@@ -359,6 +368,12 @@ struct StepTally {
     const int threads = omp_get_max_threads();
     const double n = double(std::max(steps, 1L));
     const double meanParticles = particles / n;
+    // An open window left at the end counts only when it is all there is.
+    const bool dropLast = partial && total.size() > 1;
+    auto median = [&](std::vector<double> v) {
+      if (dropLast) v.pop_back();
+      return scour::median(std::move(v));
+    };
     const double tTotal = median(total);
     const double tSph = median(groups[int(Table1Group::kSph)]);
     json j;
@@ -370,6 +385,7 @@ struct StepTally {
     j["erosion_effects"] = erosion || scene.desc.effects.erosion;
     j["threads"] = threads;
     j["steps"] = steps;
+    j["exchange_every"] = window;
     json sps = {{"total", tTotal}};
     for (size_t p = 0; p < perPass.size(); ++p)
       if (world.passCalls()[p] > 0) sps[passName(Pass(p))] = median(perPass[p]);
@@ -409,7 +425,10 @@ json measureSteps(const BenchOptions& o, const std::string& name, const Scene& s
   std::unique_ptr<World> world = makeWorld(name, scene);
   StepTally tally;
   RunEnd end = runSteps(*world, o.warmup);
-  if (end.ok()) end = runSteps(*world, o.steps, [&](const StepRecord& r) { tally.add(r, *world); });
+  // Whole windows of K steps (erosion.exchange_every), each with the bed's work once.
+  const long every = std::max(1, world->params().exchange_every);
+  const long steps = (o.steps + every - 1) / every * every;
+  if (end.ok()) end = runSteps(*world, steps, [&](const StepRecord& r) { tally.add(r, *world); });
   if (!end.ok()) {
     *code = stepFailure(end, name);
     return {};
@@ -594,8 +613,12 @@ int bench(const BenchOptions& o) {
     std::cout << j.dump(2) << "\n";
     return kExitOk;
   }
-  std::printf("scene %s: %ld particles, %d threads, %ld steps (median seconds per step)\n",
-              o.scene.c_str(), long(j["particles"]), int(j["threads"]), o.steps);
+  const long every = long(j["exchange_every"]);
+  std::printf("scene %s: %ld particles, %d threads, %ld steps (median seconds per step%s)\n",
+              o.scene.c_str(), long(j["particles"]), int(j["threads"]), long(j["steps"]),
+              every > 1 ? (", over windows of " + std::to_string(every) + " steps: the bed's work every " +
+                           std::to_string(every)).c_str()
+                        : "");
   for (auto& [k, v] : j["seconds_per_step"].items()) std::printf("  %-22s %10.6f\n", k.c_str(), double(v));
   std::printf("Table 1 groups: SPH %.6f  erosion %.6f  boundary %.6f  ((erosion + boundary) / SPH = %.0f%%)\n",
               double(j["table1"]["sph"]), double(j["table1"]["erosion"]),
