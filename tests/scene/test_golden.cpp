@@ -67,6 +67,8 @@ TEST_CASE("every preset reaches its recorded state hash and soil budget", "[gold
     // The bed on the water's clock (the presets' own speed-up waits out a spin-up longer than
     // most of these runs anyway): N = 1 is the model as it was, bit for bit (issue 16).
     spec.params.morphological_factor = 1;
+    // The bed's work every step (the scenes that ship K = 2 are covered at it below).
+    spec.params.exchange_every = 1;
     Scene s = buildScene(spec);
     World w(s.desc);
     for (int k = 0; k < g.steps; ++k) w.step();
@@ -87,10 +89,11 @@ TEST_CASE("every preset reaches its recorded state hash and soil budget", "[gold
 }
 
 TEST_CASE("the geologic speed-up as the scenes ship it reaches its recorded state", "[golden]") {
-  // The default scene at its own N = 100, run past its 0.5 s spin-up: the path the golden lines
-  // above (all at N = 1) do not take. Printed with SCOUR_GOLDEN_PRINT=1 as the lines above.
+  // The default scene at its own N = 100 and K = 2, run past its 0.5 s spin-up: the path the
+  // golden lines above (all at N = 1 and K = 1) do not take. Printed with SCOUR_GOLDEN_PRINT=1 as the lines above.
   SceneSpec spec = presetSpec("default", 0.3);
   REQUIRE(spec.params.morphological_factor == 100);
+  REQUIRE(spec.params.exchange_every == 2);
   World w(buildScene(spec).desc);
   while (w.time() < 0.6) w.step();
   const SoilBudget b = w.soilBudget();
