@@ -59,6 +59,32 @@ double median(std::vector<double> v) {
   return v.size() % 2 ? v[m] : 0.5 * (v[m - 1] + v[m]);
 }
 
+// K, when the scene's bed works every K steps (erosion.exchange_every; 1 otherwise).
+long exchangeEvery(const World& w) { return std::max(1, w.params().exchange_every); }
+
+// Steps to time: `steps` rounded up to whole windows of K steps, each holding the bed's work once.
+long timedSteps(long steps, const World& w) {
+  const long k = exchangeEvery(w);
+  return (steps + k - 1) / k * k;
+}
+
+// Each step's seconds as the means of consecutive windows of k steps (k = 1: the steps), so that
+// a median over them counts the bed's work of a scene that does it every k-th step at its cost
+// per step, not at the k − 1 steps without it. A last window shorter than k is left out unless it
+// is the only one.
+std::vector<double> windowMeans(const std::vector<double>& v, long k) {
+  if (k <= 1) return v;
+  std::vector<double> means;
+  for (size_t at = 0; at < v.size(); at += size_t(k)) {
+    const size_t end = std::min(v.size(), at + size_t(k));
+    if (end - at < size_t(k) && !means.empty()) break;
+    double sum = 0;
+    for (size_t i = at; i < end; ++i) sum += v[i];
+    means.push_back(sum / double(end - at));
+  }
+  return means;
+}
+
 // Effects off cost nothing: the scene with every effect, with the erosion effects off, and with
 // SPH alone (fluid motion and the scene's friction; no erosion, sources, sinks or rain), stepped
 // in turn so that the machine's drift hits all three alike.
@@ -92,7 +118,8 @@ int ablation(const BenchOptions& o, const Scene& scene) {
       if (const RunEnd end = runSteps(*w, 1); !end.ok()) return stepFailure(end);
   }
   std::vector<std::vector<double>> t(configs.size());
-  for (long s = 0; s < o.steps; ++s)
+  const long steps = timedSteps(o.steps, *worlds[0]);
+  for (long s = 0; s < steps; ++s)
     for (size_t c = 0; c < configs.size(); ++c) {
       const RunEnd end =
           runSteps(*worlds[c], 1, [&](const StepRecord& r) { t[c].push_back(r.seconds); });
@@ -102,8 +129,9 @@ int ablation(const BenchOptions& o, const Scene& scene) {
   j["scene"] = o.scene;
   j["particles"] = worlds[0]->fluid().size();
   j["threads"] = omp_get_max_threads();
-  j["steps"] = o.steps;
+  j["steps"] = steps;
   j["warmup_steps"] = warmed;
+  for (size_t c = 0; c < configs.size(); ++c) t[c] = windowMeans(t[c], exchangeEvery(*worlds[0]));
   for (size_t c = 0; c < configs.size(); ++c) j["seconds_per_step"][configs[c].name] = median(t[c]);
   const double ratio = median(t[1]) / median(t[2]);
   j["erosion_off_over_sph_only"] = ratio;
@@ -114,7 +142,7 @@ int ablation(const BenchOptions& o, const Scene& scene) {
   std::printf(
       "scene %s: %zu particles, %d threads, %ld steps each after %ld warm-up steps (median "
       "seconds per step)\n",
-      o.scene.c_str(), worlds[0]->fluid().size(), omp_get_max_threads(), o.steps, warmed);
+      o.scene.c_str(), worlds[0]->fluid().size(), omp_get_max_threads(), steps, warmed);
   for (size_t c = 0; c < configs.size(); ++c)
     std::printf("  %-12s %10.6f\n", configs[c].name, median(t[c]));
   std::printf("erosion off / SPH only = %.3f (1 = an effect that is off costs nothing)\n", ratio);
@@ -213,23 +241,25 @@ int benchPaper(const BenchOptions& o) {
     std::vector<double> g[3], total;
     size_t particles = 0;
     RunEnd end = runSteps(w, o.warmup);
+    const long steps = timedSteps(o.steps, w);
     if (end.ok())
-      end = runSteps(w, o.steps, [&](const StepRecord& r) {
+      end = runSteps(w, steps, [&](const StepRecord& r) {
         total.push_back(r.seconds);
         for (int k = 0; k < 3; ++k) g[k].push_back(r.groupSeconds[size_t(k)]);
         particles += w.fluid().size();
       });
     if (!end.ok()) return stepFailure(end, r.scene);
-    const double n = double(particles) / double(o.steps);
-    const double ours[3] = {median(g[int(Table1Group::kSph)]), median(g[int(Table1Group::kErosion)]),
-                            median(g[int(Table1Group::kBoundary)])};
+    const double n = double(particles) / double(steps);
+    auto windowed = [&](const std::vector<double>& v) { return median(windowMeans(v, exchangeEvery(w))); };
+    const double ours[3] = {windowed(g[int(Table1Group::kSph)]), windowed(g[int(Table1Group::kErosion)]),
+                            windowed(g[int(Table1Group::kBoundary)])};
     const double paperTotal = r.sph + r.erosion + r.boundary, oursTotal = ours[0] + ours[1] + ours[2];
     rows.push_back({{"scene", r.scene},
                     {"paper", {{"particles", r.particles}, {"sph_s", r.sph}, {"erosion_s", r.erosion},
                                {"boundary_s", r.boundary}, {"cores", 4},
                                {"particle_steps_per_second_per_core", r.particles / paperTotal / 4}}},
                     {"ours", {{"particles", long(n + 0.5)}, {"sph_s", ours[0]}, {"erosion_s", ours[1]},
-                              {"boundary_s", ours[2]}, {"step_s", median(total)}, {"cores", threads},
+                              {"boundary_s", ours[2]}, {"step_s", windowed(total)}, {"cores", threads},
                               {"particle_steps_per_second_per_core", n / oursTotal / threads}}}});
   }
   if (o.json) {
@@ -320,43 +350,23 @@ int benchWindow(const BenchOptions& o, const Scene& scene) {
 }
 
 // What the timed steps of one world add up to: per pass and Table 1 group, the totals, the
-// water's time they covered and the solves' iterations. With the bed's work every K steps
-// (erosion.exchange_every) the medians are of K-step windows' means, each window holding one
-// step with the bed's work: a median of single steps would read the K − 1 steps without it.
+// water's time they covered and the solves' iterations; the medians are of windows of K steps
+// (windowMeans).
 struct StepTally {
   std::vector<std::vector<double>> perPass = std::vector<std::vector<double>>(size_t(Pass::kCount));
   std::vector<double> total, groups[4];
   double particles = 0;
-  long window = 1;  ///< K, steps per window
-  StepRecord pending;  ///< the open window's sums
-  long inWindow = 0;
-  /// The last entries are an open window's: replaced as it fills; report() leaves them out unless
-  /// no window closed (fewer timed steps than K).
-  bool partial = false;
-  void pop() {
-    total.pop_back();
-    for (auto& p : perPass) p.pop_back();
-    for (auto& g : groups) g.pop_back();
-  }
+  long window = 1;  ///< K (erosion.exchange_every): the medians are of windows of K steps
   // Wall seconds per simulated second (all the timed steps, not a median: a solver that takes
   // fewer, longer steps is judged on the water's time), and the solves' iterations.
   double wall = 0, simulated = 0, densityError = 0;
   long steps = 0, densityIterations = 0, divergenceIterations = 0;
 
   void add(const StepRecord& r, const World& w) {
-    window = std::max(1, w.params().exchange_every);
-    if (inWindow == 0) pending.seconds = 0, pending.passSeconds = {}, pending.groupSeconds = {};
-    pending.seconds += r.seconds;
-    for (size_t p = 0; p < perPass.size(); ++p) pending.passSeconds[p] += r.passSeconds[p];
-    for (size_t k = 0; k < 4; ++k) pending.groupSeconds[k] += r.groupSeconds[k];
-    // The window's means replace the last partial window's (fewer timed steps than K: that one).
-    if (partial) pop();
-    const double k = double(++inWindow);
-    total.push_back(pending.seconds / k);
-    for (size_t p = 0; p < perPass.size(); ++p) perPass[p].push_back(pending.passSeconds[p] / k);
-    for (size_t g = 0; g < 4; ++g) groups[g].push_back(pending.groupSeconds[g] / k);
-    partial = inWindow < window;
-    if (!partial) inWindow = 0;
+    window = exchangeEvery(w);
+    total.push_back(r.seconds);
+    for (size_t p = 0; p < perPass.size(); ++p) perPass[p].push_back(r.passSeconds[p]);
+    for (int k = 0; k < 4; ++k) groups[k].push_back(r.groupSeconds[size_t(k)]);
     particles += double(w.fluid().size());
     wall += r.seconds, simulated += r.stats.dt, densityError += r.stats.density_error;
     densityIterations += r.stats.density_iterations, divergenceIterations += r.stats.divergence_iterations;
@@ -368,12 +378,7 @@ struct StepTally {
     const int threads = omp_get_max_threads();
     const double n = double(std::max(steps, 1L));
     const double meanParticles = particles / n;
-    // An open window left at the end counts only when it is all there is.
-    const bool dropLast = partial && total.size() > 1;
-    auto median = [&](std::vector<double> v) {
-      if (dropLast) v.pop_back();
-      return scour::median(std::move(v));
-    };
+    auto median = [&](const std::vector<double>& v) { return scour::median(windowMeans(v, window)); };
     const double tTotal = median(total);
     const double tSph = median(groups[int(Table1Group::kSph)]);
     json j;
@@ -425,10 +430,7 @@ json measureSteps(const BenchOptions& o, const std::string& name, const Scene& s
   std::unique_ptr<World> world = makeWorld(name, scene);
   StepTally tally;
   RunEnd end = runSteps(*world, o.warmup);
-  // Whole windows of K steps (erosion.exchange_every), each with the bed's work once.
-  const long every = std::max(1, world->params().exchange_every);
-  const long steps = (o.steps + every - 1) / every * every;
-  if (end.ok()) end = runSteps(*world, steps, [&](const StepRecord& r) { tally.add(r, *world); });
+  if (end.ok()) end = runSteps(*world, timedSteps(o.steps, *world), [&](const StepRecord& r) { tally.add(r, *world); });
   if (!end.ok()) {
     *code = stepFailure(end, name);
     return {};
