@@ -59,8 +59,8 @@ double median(std::vector<double> v) {
   return v.size() % 2 ? v[m] : 0.5 * (v[m - 1] + v[m]);
 }
 
-// K, when the scene's bed works every K steps (erosion.exchange_every; 1 otherwise).
-long exchangeEvery(const World& w) { return std::max(1, w.params().exchange_every); }
+// K: the scene's bed works every K steps (erosion.exchange_every, at least 1).
+long exchangeEvery(const World& w) { return w.params().exchange_every; }
 
 // Steps to time: `steps` rounded up to whole windows of K steps, each holding the bed's work once.
 long timedSteps(long steps, const World& w) {

@@ -203,7 +203,7 @@ double World::chooseDt() const {
   // Explicit sediment transport: diffusion needs Δt ≤ h²/(8D) (model.md); the donor–acceptor
   // settling moves at most a fraction λ of h per step.
   // Every K-th step the exchange spans K steps: the limits hold for the span.
-  const double every = double(std::max(params_.exchange_every, 1));
+  const double every = double(params_.exchange_every);
   if (effects_.diffusion && params_.diffusion > 0) dt = std::min(dt, 0.125 * h * h / params_.diffusion / every);
   if ((effects_.settling || effects_.deposition) && sediment_.vs0 != 0)
     dt = std::min(dt, params_.cfl * h / std::abs(sediment_.vs0) / every);
@@ -433,10 +433,9 @@ StepStats World::step() {
     });
   }
   // The bed's work every K-th step over the K steps' time (model.md, "the bed's work every K
-  // steps"); K = 1: every step over its own.
-  const int every = params_.exchange_every;
-  const bool exchange = every <= 1 || (step_ % every) == 0;
-  const double span = double(std::max(every, 1)) * dt_;
+  // steps"); K = 1 (validateParams keeps K ≥ 1): every step over its own.
+  const bool exchange = step_ % params_.exchange_every == 0;
+  const double span = double(params_.exchange_every) * dt_;
   if (exchange) sedimentWork(span);
   // DFSPH's density, α and divergence solve after the terrain moved: a saved state then holds all
   // they read, and a resumed run recomputes α from the same terrain (world_state.cpp).
