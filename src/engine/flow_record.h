@@ -18,10 +18,10 @@
 //   direction   Σ q Δt_m    [m³/m], a vector (x, z)
 //   shear       Σ τ Δt_m    [Pa s] and the peak τ [Pa]
 // A vertex never covered keeps zeros in all of them. The per-vertex arrays live in tiles of
-// 8 × 8 vertices made on first touch, so their memory follows the water (52 bytes a vertex:
-// the six sums and the place of its sums in this step's list; 24 more for each vertex a step
-// touches). The particles are
-// visited in index order by one thread: the sums are the same at any thread count.
+// 8 × 8 vertices made on first touch, so their memory follows the water (48 bytes a vertex: the
+// six sums; a step's scratch is 16 bytes a particle and 4 for each tile a footprint covers).
+// Each touched tile is summed by one thread, its particles in index order: the sums are the same,
+// bit for bit, at any thread count.
 
 #include <cstdint>
 #include <vector>
@@ -75,15 +75,15 @@ class FlowRecord {
   std::vector<int32_t> slot_;   ///< per tile: its slot, or −1
   std::vector<int> tiles_;      ///< per slot: its tile
   std::vector<double> values_;  ///< per slot, kFields × kTile² values (field-major)
-  /// This step's sums of one touched vertex (slot × kTile² + place in the tile), in the order the
-  /// vertices were first touched.
-  struct StepSum {
-    double qx = 0, qz = 0;
-    float tau = 0;  ///< the largest of the particles' τ (floats: their maximum is one of them)
-    uint32_t vertex = 0;
+  /// This step's scratch: each particle's footprint (vertex ranges; empty when it is not near
+  /// the bed), and the near-bed particles of each slot's tile in index order (member_ from
+  /// start_[slot] to start_[slot + 1]).
+  struct Footprint {
+    int i0, i1, k0, k1;
   };
-  std::vector<StepSum> step_;
-  std::vector<int32_t> listed_;  ///< per slot × kTile²: its place in step_, or −1
+  std::vector<Footprint> foot_;
+  std::vector<uint32_t> start_;
+  std::vector<uint32_t> member_;
 };
 
 }  // namespace scour
