@@ -6,6 +6,8 @@
 #include <Eigen/Geometry>
 #include <omp.h>
 
+#include "engine/parallel.h"
+
 namespace scour {
 
 BoundarySampler::BoundarySampler(const Heightfield& hf, double spacing, BoundarySampling sampling)
@@ -151,7 +153,7 @@ void BoundarySampler::sampleBlock(const Heightfield& hf, int i0, int k0, int bx,
 void BoundarySampler::follow(const Heightfield& hf, const std::vector<uint32_t>& vertexMarks,
                              uint32_t epoch, BoundaryParticles& b) {
   const size_t n = b.size();
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (n >= kParallelFrom)
   for (size_t k = 0; k < n; ++k) {
     bool moved = false;
     for (size_t v : hf.triangleVertexIndices(b.triangle[k])) moved = moved || vertexMarks[v] == epoch;

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <numbers>
 
+#include "engine/parallel.h"
+
 namespace scour {
 
 DfsphConstants::DfsphConstants(const SphConstants& k, double spacing) : h(k.h), mass(k.mass), rho0(k.rho0) {
@@ -239,10 +241,10 @@ SolveReport solveDensity(const DfsphConstants& k, const NeighborLists& nbrs, dou
         w.change[i] = std::max(kappa[i] + predicted * w.alpha[i] * perDt2, 0.0f) - kappa[i];
       },
       [&] {
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (n >= kParallelFrom)
         for (size_t i = 0; i < n; ++i) kappa[i] += w.change[i];
       });
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (n >= kParallelFrom)
   for (size_t i = 0; i < n; ++i) f.p[i] = kappa[i] * f.rho[i];
   return report;
 }

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <limits>
 
+#include "engine/parallel.h"
+
 namespace scour {
 
 Heightfield::Heightfield(int nx, int nz, double dx, double dz, double x0, double z0)
@@ -107,16 +109,17 @@ void WallSurface::follow(const Heightfield& terrain, const std::vector<int>& mov
   // A vertex's maximum reads the terrain within the radius, its average the maxima within it.
   // Each vertex is written once from what the pass before wrote: in parallel, and the same at
   // any thread count.
+  // Each vertex reads the disk: a pass of fewer than kParallelFrom reads runs on this thread.
   const std::vector<int> maxima = spread(terrain, movedVertices);
   const long nm = long(maxima.size());
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (maxima.size() * disk_.size() >= kParallelFrom)
   for (long m = 0; m < nm; ++m) {
     const int u = maxima[size_t(m)];
     highest_.heights()[size_t(u)] = filtered(terrain, u % terrain.nx(), u / terrain.nx(), true);
   }
   const std::vector<int> means = spread(terrain, maxima);
   const long ns = long(means.size());
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (means.size() * disk_.size() >= kParallelFrom)
   for (long m = 0; m < ns; ++m) {
     const int u = means[size_t(m)];
     smooth_.heights()[size_t(u)] = filtered(highest_, u % terrain.nx(), u / terrain.nx(), false);

@@ -12,6 +12,7 @@
 #include <nanoflann.hpp>
 
 #include "engine/fluid.h"
+#include "engine/parallel.h"
 
 namespace scour {
 
@@ -36,7 +37,7 @@ void Grid::build(const std::vector<Vec3f>& x, float cell) {
   Vec3f lo = Vec3f::Constant(std::numeric_limits<float>::max()), hi = -lo;
   if (n == 0) lo = hi = Vec3f::Zero();
   // min/max are exact, so the result does not depend on how the threads split the work.
-#pragma omp parallel
+#pragma omp parallel if (n >= kParallelFrom)
   {
     Vec3f tlo = Vec3f::Constant(std::numeric_limits<float>::max()), thi = -tlo;
 #pragma omp for schedule(static) nowait
@@ -66,7 +67,7 @@ void Grid::build(const std::vector<Vec3f>& x, float cell) {
   dims_ = {int(ext.x()) + 2, int(ext.y()) + 2, int(ext.z()) + 2};
   const size_t cells = size_t(dims_.x()) * dims_.y() * dims_.z();
   std::vector<int64_t> cellIdx(n);
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (n >= kParallelFrom)
   for (size_t i = 0; i < n; ++i) {
     const Eigen::Vector3i c = cellOf(x[i]).cwiseMax(0).cwiseMin(dims_ - Eigen::Vector3i::Ones());
     cellIdx[i] = linear(c.x(), c.y(), c.z());
@@ -91,7 +92,7 @@ void Grid::binOther(const std::vector<Vec3f>& y, std::vector<uint32_t>& start,
                     std::vector<uint32_t>& sorted) const {
   const size_t cells = size_t(dims_.x()) * dims_.y() * dims_.z();
   std::vector<int64_t> cellIdx(y.size(), -1);
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (y.size() >= kParallelFrom)
   for (size_t i = 0; i < y.size(); ++i) {
     Eigen::Vector3i c = cellOf(y[i]);
     if (inside(c.x(), c.y(), c.z())) cellIdx[i] = linear(c.x(), c.y(), c.z());
@@ -115,7 +116,7 @@ uint64_t spread3(uint64_t v) {
 std::vector<uint32_t> Grid::zOrder(const std::vector<Vec3f>& x) const {
   const size_t n = x.size();
   std::vector<std::pair<uint64_t, uint32_t>> keys(n);
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (n >= kParallelFrom)
   for (size_t i = 0; i < n; ++i) {
     Eigen::Vector3i c = cellOf(x[i]);
     keys[i] = {spread3(uint64_t(c.x())) | spread3(uint64_t(c.y())) << 1 |
@@ -171,7 +172,7 @@ void NeighborLists::build(const Grid& grid, const std::vector<Vec3f>& x,
   float* const X = inCellOrder.data();
   float* const Y = X + m;
   float* const Z = Y + m;
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (m >= kParallelFrom)
   for (size_t k = 0; k < m; ++k) {
     const Vec3f& p = y[sorted[k]];
     X[k] = p.x(), Y[k] = p.y(), Z[k] = p.z();

@@ -9,6 +9,8 @@
 #include <immintrin.h>
 #endif
 
+#include "engine/parallel.h"
+
 namespace scour {
 
 SedimentConstants::SedimentConstants(const SimParams& p)
@@ -309,7 +311,7 @@ void transferSediment(const SedimentConstants& k, const SedimentEffects& fx,
   resizeForParticles(scale, n);
   resizeForParticles(delta, n);
   // (delta needs no clearing: the exchange writes every particle's.)
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (n >= kParallelFrom)
   for (size_t i = 0; i < n; ++i) {
     conc[i] = float(f.sed[i] / V);
     hind[i] = k.hindranceFast(f.sed[i] / V);
@@ -413,7 +415,7 @@ void transferSediment(const SedimentConstants& k, const SedimentEffects& fx,
       for (const auto& tv : l) def.created += tv.second;
     return;
   }
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (n >= kParallelFrom)
   for (size_t i = 0; i < n; ++i) f.sed[i] = std::clamp(f.sed[i] + delta[i], 0.0, room);
 }
 
@@ -644,12 +646,14 @@ std::vector<int> applyTerrainChange(Heightfield& hf, const std::vector<double>& 
     }
   };
   // Rows k and k + 2 share no vertex: each round's rows run in parallel, a row on one thread.
+  // A round of fewer touched triangles than kParallelFrom runs on this thread.
   for (int parity = 0; parity < 2; ++parity) {
     std::vector<int> round;
+    size_t triangles = 0;
     for (int k : live)
-      if (k % 2 == parity) round.push_back(k);
+      if (k % 2 == parity) round.push_back(k), triangles += size_t(start[size_t(k) + 1] - start[size_t(k)]);
     const long nr = long(round.size());
-#pragma omp parallel for schedule(dynamic, 1)
+#pragma omp parallel for schedule(dynamic, 1) if (triangles >= kParallelFrom)
     for (long r = 0; r < nr; ++r) applyRow(round[size_t(r)]);
   }
   std::vector<int> moved;

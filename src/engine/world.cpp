@@ -1,6 +1,7 @@
 #include "engine/world.h"
 
 #include "engine/limits.h"
+#include "engine/parallel.h"
 #include "engine/world_parts.h"
 
 #include <omp.h>
@@ -178,7 +179,7 @@ double World::chooseDt() const {
   if (params_.fixed_dt > 0) return params_.fixed_dt;
   float v2 = 0, a2 = 0, rhoMax = 0;
   const size_t n = fluid_.size();
-#pragma omp parallel for schedule(static) reduction(max : v2, a2, rhoMax)
+#pragma omp parallel for schedule(static) reduction(max : v2, a2, rhoMax) if (n >= kParallelFrom)
   for (size_t i = 0; i < n; ++i) {
     v2 = std::max(v2, fluid_.v[i].squaredNorm());
     a2 = std::max(a2, fluid_.a[i].squaredNorm());
@@ -371,7 +372,7 @@ StepStats World::step() {
     const float kick = implicit() ? 0.0f : half;
     if (implicit()) {
       timed(Pass::kIntegrate, [&] {
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (n0 >= kParallelFrom)
         for (size_t i = 0; i < n0; ++i) fluid_.v[i] += full * fluid_.a[i];
       });
       timed(Pass::kPressureSolve, [&] {
@@ -423,12 +424,12 @@ StepStats World::step() {
     timed(Pass::kIntegrate, [&] {
       // The force time's velocity, predicted from the half step: v̂ = v(t+Δt/2) + Δt/2 · a(t).
       resizeForParticles(vhat_, n);
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (n >= kParallelFrom)
       for (size_t i = 0; i < n; ++i) vhat_[i] = fluid_.v[i] + half * fluid_.a[i];
     });
     computeAccelerations();
     timed(Pass::kIntegrate, [&] {
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (n >= kParallelFrom)
       for (size_t i = 0; i < n; ++i) fluid_.v[i] += half * fluid_.a[i];  // kick: v(t + Δt)
     });
   }
@@ -461,7 +462,7 @@ StepStats World::step() {
   s.step = step_;
   s.particles = n;
   float v2 = 0;
-#pragma omp parallel for schedule(static) reduction(max : v2)
+#pragma omp parallel for schedule(static) reduction(max : v2) if (n >= kParallelFrom)
   for (size_t i = 0; i < n; ++i) v2 = std::max(v2, fluid_.v[i].squaredNorm());
   s.max_speed = std::sqrt(double(v2));
   return s;
