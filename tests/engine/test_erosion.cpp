@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "engine/parallel.h"
 #include "engine/sediment.h"
 
 using namespace scour;
@@ -338,21 +339,24 @@ TEST_CASE("a triangle's volume waits until it would move the triangle by the thr
 
 TEST_CASE("applyTerrainChange gives the same terrain at any thread count", "[terrain][determinism]") {
   // Volumes over many rows, in an order unrelated to the rows: each row in ascending order, the
-  // even rows then the odd ones, whatever the threads.
-  auto run = [](int threads) {
+  // even rows then the odd ones, whatever the threads. A small grid takes the rounds on one
+  // thread (fewer touched triangles than kParallelFrom), the large one in parallel.
+  const int side = GENERATE(60, 300);
+  auto run = [side](int threads) {
     omp_set_num_threads(threads);
-    Heightfield hf(60, 50, 0.02, 0.02);
+    Heightfield hf(side, side - 10, 0.02, 0.02);
     for (int k = 0; k < hf.nz(); ++k)
       for (int i = 0; i < hf.nx(); ++i) hf.at(i, k) = 0.01 * std::sin(0.3 * i) * std::cos(0.2 * k);
     auto areas = vertexAreas(hf);
     TerrainAccumulator acc;
     acc.resize(hf.triangleCount(), hf.heights().size());
     uint32_t seed = 11;
-    for (int e = 0; e < 20000; ++e) {
+    for (int e = 0; e < std::max(20000, 2 * hf.triangleCount()); ++e) {
       seed = seed * 1664525u + 1013904223u;
       const int tri = int((seed >> 8) % uint32_t(hf.triangleCount()));
       acc.add(tri, 1e-7 * (double((seed >> 4) % 2001) - 1000.0));
     }
+    if (side == 300) REQUIRE(acc.touched.size() >= 2 * kParallelFrom);
     const double v0 = terrainVolume(hf, areas, 0.0);
     double expected = 0;
     for (double v : acc.volume) expected += v;
