@@ -107,9 +107,8 @@ std::vector<int> WallSurface::spread(const Heightfield& t, const std::vector<int
 void WallSurface::follow(const Heightfield& terrain, const std::vector<int>& movedVertices) {
   if (disk_.empty() || movedVertices.empty()) return;
   // A vertex's maximum reads the terrain within the radius, its average the maxima within it.
-  // Each vertex is written once from what the pass before wrote: in parallel, and the same at
-  // any thread count.
-  // Each vertex reads the disk: a pass of fewer than kParallelFrom reads runs on this thread.
+  // Each vertex is written once from what the pass before wrote: in parallel once a pass reads
+  // kParallelFrom heights (its vertices times the disk's), and the same at any thread count.
   const std::vector<int> maxima = spread(terrain, movedVertices);
   const long nm = long(maxima.size());
 #pragma omp parallel for schedule(static) if (maxima.size() * disk_.size() >= kParallelFrom)
